@@ -1,0 +1,33 @@
+#pragma once
+// What capture hands to modeling: one ordered contour per blade, from one side of the base,
+// over the tip, to the other side of the base (Fan & Sheng 2017, Sec. 4.2).
+#include <opencv2/core/mat.hpp>
+#include <opencv2/core/types.hpp>
+#include <string>
+#include <vector>
+
+#include "meadow/capture/depth_frame.h"
+
+namespace meadow::capture {
+
+// Why a blade or cluster cannot be trusted; empty flags mean none was raised.
+enum class BladeFlag {
+    Overlapping,    // crosses or touches another blade: the cut may be wrong
+    CurlsSideways,  // the contour folds back on itself along the blade
+    TooThin,        // narrower than the sensor resolves (< ~2 px)
+    BaseHidden,     // the base is not visible (camera pose, occlusion)
+    Asymmetric,     // the two sides differ more than the symmetric match tolerates
+    Truncated,      // touches the image border
+};
+std::string toString(BladeFlag flag);
+
+struct BladeContour {
+    int id = 0;                         // 1.. within its frame
+    std::vector<cv::Point> contour_px;  // base side A -> tip -> base side B, closed implicitly
+    int tipIndex = 0;                   // index of the tip point in contour_px
+    cv::Mat1b mask;                     // the blade's pixels (frame-sized)
+    std::vector<BladeFlag> flags;
+    std::vector<std::string> reasons;  // one human-readable line per flag
+};
+
+}  // namespace meadow::capture

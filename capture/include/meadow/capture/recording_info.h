@@ -1,0 +1,27 @@
+#pragma once
+#include <optional>
+#include <string>
+
+#include "meadow/capture/intrinsics.h"
+
+namespace meadow::capture {
+
+// Unit of the integers stored in a depth PNG. Frames in memory are always millimetres.
+enum class DepthUnit { Millimetre, FifthMillimetre /* TUM RGB-D: 1/5000 m */, Metre };
+
+// Parses "mm", "0.2mm", "m"; nullopt otherwise.
+std::optional<DepthUnit> parseDepthUnit(const std::string& text);
+std::string toString(DepthUnit unit);
+// Millimetres per stored integer step.
+double millimetresPerUnit(DepthUnit unit);
+
+// What recording.json holds (README, "Recording format").
+struct RecordingInfo {
+    std::string sensor = "unknown";
+    Intrinsics intrinsics;
+    DepthUnit depthUnit = DepthUnit::Millimetre;
+    int frameCount = 0;
+    double frameRate_hz = 30.0;
+};
+
+}  // namespace meadow::capture

@@ -1,0 +1,55 @@
+#include "meadow/capture/atomic_file.h"
+
+#include <unistd.h>
+
+#include <system_error>
+
+#include "meadow/capture/error.h"
+
+namespace meadow {
+
+namespace fs = std::filesystem;
+
+AtomicFile::AtomicFile(fs::path path) : path_(std::move(path)) {
+    tmp_ = path_;
+    tmp_ += ".tmp." + std::to_string(::getpid());
+    if (path_.has_parent_path()) {
+        std::error_code ec;
+        fs::create_directories(path_.parent_path(), ec);
+        if (ec)
+            throw Error("cannot create folder " + path_.parent_path().string() + ": " +
+                        ec.message());
+    }
+    out_.open(tmp_, std::ios::binary | std::ios::trunc);
+    if (!out_)
+        throw Error("cannot write " + tmp_.string() + ": check the folder exists and is writable");
+}
+
+AtomicFile::~AtomicFile() {
+    if (!committed_) {
+        out_.close();
+        std::error_code ignored;
+        fs::remove(tmp_, ignored);
+    }
+}
+
+void AtomicFile::commit() {
+    out_.flush();
+    const bool ok = static_cast<bool>(out_);
+    out_.close();
+    if (!ok) throw Error("writing " + path_.string() + " failed (disk full?)");
+    std::error_code ec;
+    fs::rename(tmp_, path_, ec);
+    if (ec)
+        throw Error("cannot rename " + tmp_.string() + " to " + path_.string() + ": " +
+                    ec.message());
+    committed_ = true;
+}
+
+void writeFileAtomically(const fs::path& path, std::string_view bytes) {
+    AtomicFile file(path);
+    file.stream().write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
+    file.commit();
+}
+
+}  // namespace meadow

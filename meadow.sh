@@ -1,0 +1,57 @@
+#!/usr/bin/env bash
+# meadow.sh — all set-up on a fresh Debian 12 machine, then one job.
+#   ./meadow.sh demo   install what is missing, build, run the main job on the bundled sample
+#   ./meadow.sh test   install what is missing, build, run the whole test suite (CTest)
+#   ./meadow.sh asan   the same suite under AddressSanitizer + UBSan
+#   ./meadow.sh build  install what is missing and build only
+# Idempotent: packages already present are not touched; builds are incremental.
+set -euo pipefail
+cd "$(dirname "$0")"
+root=$PWD
+
+# Debian 12 packages meadow builds and tests with (README, "Dependencies").
+packages=(
+  build-essential cmake ninja-build pkg-config git
+  libopencv-dev libopenni2-dev libpcl-dev libeigen3-dev libglm-dev libtinygltf-dev
+  nlohmann-json3-dev libcli11-dev
+  libegl-dev libgl-dev libegl-mesa0 libgl1-mesa-dri
+  libgtest-dev libgmock-dev libbenchmark-dev
+  nodejs npm
+)
+
+install_missing() {
+  local missing=()
+  for p in "${packages[@]}"; do
+    dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "ok installed" || missing+=("$p")
+  done
+  if ((${#missing[@]})); then
+    echo "meadow.sh: installing ${#missing[@]} missing package(s): ${missing[*]}"
+    local sudo=""
+    [ "$(id -u)" -eq 0 ] || sudo=sudo
+    $sudo apt-get update -qq
+    DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
+  fi
+  # The Khronos glTF validator (npm) checks the .glb export in the tests.
+  if [ ! -x "$root/tools/node_modules/.bin/gltf_validator" ] && [ ! -f "$root/tools/node_modules/gltf-validator/package.json" ]; then
+    echo "meadow.sh: installing the Khronos glTF validator (npm gltf-validator) into tools/"
+    (cd "$root/tools" && npm install --silent --no-audit --no-fund >/dev/null)
+  fi
+}
+
+jobs=$(nproc)
+build() {
+  local preset=$1
+  [ -f "build/$preset/build.ninja" ] || cmake --preset "$preset" >/dev/null
+  cmake --build --preset "$preset" -j "$jobs" | grep -vE '^\[[0-9]+/[0-9]+\] ' || true
+  test "${PIPESTATUS[0]}" -eq 0
+}
+
+export XDG_RUNTIME_DIR=${XDG_RUNTIME_DIR:-/tmp}
+cmd=${1:-help}
+case "$cmd" in
+  build) install_missing; build default ;;
+  test)  install_missing; build default; ctest --preset default -j "$jobs" ;;
+  asan)  install_missing; build asan; ctest --preset asan -j "$jobs" ;;
+  demo)  install_missing; build default; shift; exec "$root/samples/demo.sh" "$root/build/default/cli/meadow" "$@" ;;
+  *) sed -n '2,7p' "$0"; [ "$cmd" = help ] || exit 2 ;;
+esac

@@ -1,0 +1,14 @@
+#include "shader_sources.h"
+
+#include "meadow/capture/error.h"
+
+namespace meadow::runtime::detail {
+
+std::string_view shaderSource(std::string_view relativePath) {
+    for (const auto& [path, text] : embeddedShaders())
+        if (path == relativePath) return text;
+    throw Error("meadow::runtime: no embedded shader named '" + std::string(relativePath) +
+                "' (is it under shaders/ and was the build re-run?)");
+}
+
+}  // namespace meadow::runtime::detail
