@@ -1,0 +1,12 @@
+#pragma once
+#include "meadow/capture/error.h"
+
+namespace meadow::modeling {
+
+// Runtime failures of the modeling layer (unreadable library, failed fit on bad input).
+class ModelingError : public Error {
+public:
+    using Error::Error;
+};
+
+}  // namespace meadow::modeling
