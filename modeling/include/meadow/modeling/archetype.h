@@ -5,6 +5,7 @@
 // approximately in the XY plane (face normal +Z), the spine bending within that plane toward +X
 // (a captured spine may carry a small Z component from depth). The width at arc-length fraction
 // s is measured in the face plane, perpendicular to the spine's tangent.
+#include <glm/vec3.hpp>
 #include <string>
 #include <vector>
 
@@ -24,12 +25,37 @@ struct WidthProfile {
     [[nodiscard]] float maxWidth_m() const;
 };
 
+// How well the archetype matches the blade it was fitted to (blade_fit.h fills it in). Zero means
+// "not measured" for an archetype that was authored rather than captured.
+struct FitReport {
+    float spineRms_mm = 0.f;       // RMS distance of the 3D skeleton points to the fitted spine
+    float spineMax_mm = 0.f;       // largest such distance
+    float widthMae_mm = 0.f;       // mean |profile - measured width| over the skeleton samples
+    float widthMax_mm = 0.f;       // largest such difference
+    float shapeError_mm = 0.f;     // mean |nearest analytic shape - width profile|
+    float widthCheckMae_mm = 0.f;  // mean |2 x distance transform - matched width| (independent)
+    float sideLengthRatio = 1.f;   // longer contour side / shorter side (1 = symmetric)
+    bool asymmetric = false;       // the symmetric match is not trustworthy for this blade
+    int skeletonPoints = 0;        // matched contour pairs behind the fit
+};
+
+// Where an archetype came from, so a library entry can be traced back to its capture.
+struct Source {
+    std::string recording;  // recording folder / file name as given to capture
+    int frame = -1;         // frame index in that recording (-1: unknown / authored)
+    int bladeId = 0;        // BladeContour::id within that frame
+};
+
 struct Archetype {
     std::string name;
     QuadraticBezier spine_m;  // blade-local frame above
     WidthProfile width;
     AnalyticShape nearestShape = AnalyticShape::Quadratic;
     float tau = 0.5f;  // triangle-tip parameter (fraction of height where the tip begins)
+    FitReport fit;
+    Source source;
+    // Refined skeleton knots (Fan & Sheng 2017, Algorithm 1), blade-local frame, base to tip.
+    std::vector<glm::vec3> knots_m;
 
     // Arc length of the spine (the blade's height when straightened).
     [[nodiscard]] float height_m() const { return spine_m.length(); }
