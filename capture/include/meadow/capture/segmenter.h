@@ -1,0 +1,172 @@
+#pragma once
+// Segmentation: depth frames -> one ordered contour per blade (Fan & Sheng 2017, Sec. 4.1-4.2).
+//
+// Pipeline, one stage per file under capture/src/segmentation/:
+//   temporal fusion (optional, several frames of a still tuft: per-pixel median)
+//   -> depth-band mask (user band or the nearest dominant depth mode)
+//   -> ground / background plane removal (PCL: RANSAC or organized multi-plane)
+//   -> outlier removal (organized neighbourhood test, or PCL statistical outlier removal)
+//   -> morphological clean-up (closing, small regions, small holes)
+//   -> contours and cluster reference point (contour centre or base point)
+//   -> partition at persistent minima of the distance to the reference point
+//   -> per-blade contour, mask and flags.
+// Every stage records what it dropped and why in Segmentation::report; every flag carries a
+// reason. Frames with nothing to segment give an empty result with Segmentation::noBladesReason
+// set, never an exception; broken input (wrong image type, mismatched sizes, unusable
+// intrinsics) throws CaptureError.
+#include <filesystem>
+#include <memory>
+#include <opencv2/core/mat.hpp>
+#include <opencv2/core/types.hpp>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "meadow/capture/blade_contour.h"
+#include "meadow/capture/depth_frame.h"
+
+namespace meadow::capture {
+
+enum class PlaneMethod {
+    None,                 // keep every point of the depth band
+    Ransac,               // pcl::SACSegmentation, SACMODEL_PLANE, on a strided sample
+    OrganizedMultiPlane,  // pcl::OrganizedMultiPlaneSegmentation + integral-image normals
+};
+enum class OutlierMethod {
+    None,
+    OrganizedNeighbourhood,  // per pixel: enough neighbours within a depth tolerance (cheap)
+    Statistical,             // pcl::StatisticalOutlierRemoval on the masked points
+};
+enum class ReferencePoint {
+    ContourCentre,  // centroid of the cluster (Fan & Sheng 2017, Sec. 4.2)
+    BasePoint,      // lowest part of the cluster, where the blades of a side-viewed tuft meet
+};
+std::string toString(PlaneMethod);
+std::string toString(OutlierMethod);
+std::string toString(ReferencePoint);
+
+struct SegmenterParams {
+    // --- Depth band (Sec. 4.1). nearDepth_m < farDepth_m sets the band; both 0 = automatic:
+    // the nearest histogram mode holding >= minModeFraction of the valid pixels, widened to
+    // the histogram valleys on both sides.
+    float nearDepth_m = 0.0f;
+    float farDepth_m = 0.0f;
+    float histogramBin_m = 0.01f;
+    float minModeFraction = 0.05f;
+    float maxBandHalfWidth_m = 0.5f;  // the automatic band never spans more than this each side
+
+    // --- Ground / background plane removal.
+    PlaneMethod planeMethod = PlaneMethod::Ransac;
+    float planeDistance_m = 0.012f;    // inlier tolerance; > sensor noise at 1-1.5 m
+    float minPlaneFraction = 0.15f;    // a plane must hold this share of the band's pixels
+    float minPlaneObliquity_deg = 30;  // planes facing the camera more squarely than this are
+                                       // kept: a fanned tuft seen from the side is one of them
+    int maxPlanes = 2;
+    int planeSampleStride_px = 2;  // RANSAC fits on every n-th pixel, inliers use all pixels
+    int ransacIterations = 200;
+
+    // --- Outlier removal (flying pixels, speckle).
+    OutlierMethod outlierMethod = OutlierMethod::OrganizedNeighbourhood;
+    int outlierWindow_px = 5;      // odd neighbourhood size
+    int outlierMinNeighbours = 4;  // neighbours within the tolerance needed to stay
+    float outlierDepthTolerance_m = 0.03f;
+    int statisticalMeanK = 16;          // Statistical: neighbours for the mean distance
+    float statisticalStddevMul = 1.5f;  // Statistical: threshold in standard deviations
+
+    // --- Temporal fusion: a pixel needs a reading in at least this share of the frames.
+    float minValidFrameFraction = 0.5f;
+
+    // --- Morphological clean-up.
+    int closeKernel_px = 3;     // 0 or 1 = no closing; closing bridges 1 px dropouts
+    int openKernel_px = 0;      // opening removes thin blades too, so off by default
+    int minRegionArea_px = 60;  // connected regions smaller than this are dropped
+    int maxHoleArea_px = 30;    // enclosed holes up to this size are filled (dropouts)
+
+    // --- Partition (Sec. 4.2).
+    ReferencePoint reference = ReferencePoint::BasePoint;
+    float baseBandFraction = 0.05f;  // BasePoint: lowest share of the cluster's height used
+    float smoothingSigma_px = 2.0f;  // Gaussian along the contour, in contour samples
+    // A local minimum of the distance cuts the contour when its persistence (depth below the
+    // lower of the two maxima that bound it) reaches max(minPersistence_px,
+    // minPersistenceFraction x the largest distance).
+    float minPersistence_px = 6.0f;
+    float minPersistenceFraction = 0.06f;
+    int minBladeContour_px = 12;  // contour pieces shorter than this merge into a neighbour
+
+    // --- Flags.
+    float minResolvableWidth_px = 2.0f;  // TooThin below this mean width
+    float curlTurn_deg = 150.0f;         // CurlsSideways when the centre line turns more
+    float overlapWidthRatio = 2.2f;      // Overlapping when this much wider than the median
+
+    // Empty when usable; otherwise what is wrong with the parameters.
+    [[nodiscard]] std::string problem() const;
+};
+
+// What one stage removed, and why.
+struct StageReport {
+    std::string stage;               // "depth band", "plane removal", ...
+    int droppedPixels = 0;           // pixels removed from the mask by this stage
+    int keptPixels = 0;              // mask pixels after the stage
+    double time_ms = 0.0;            // wall time of the stage
+    std::vector<std::string> notes;  // "dropped 3 regions < 60 px", "plane n=(..) 41 % of band"
+};
+
+// A connected foreground region: the tuft, normally one per frame.
+struct BladeCluster {
+    std::vector<cv::Point> contour_px;  // outer contour, CHAIN_APPROX_NONE, counter-clockwise
+    cv::Point2f centre_px;              // contour centre (centroid of the region)
+    cv::Point2f basePoint_px;           // lowest part of the region
+    cv::Point2f reference_px;           // the one used for the partition (params.reference)
+    std::vector<int> cutIndices;        // indices into contour_px where blades meet
+    std::vector<float> distance_px;     // smoothed distance to reference along the contour
+    std::vector<int> bladeIds;          // ids of this cluster's blades in Segmentation::blades
+    int area_px = 0;
+    std::vector<BladeFlag> flags;
+    std::vector<std::string> reasons;
+};
+
+struct Segmentation {
+    std::vector<BladeContour> blades;
+    std::vector<BladeCluster> clusters;
+    cv::Mat1b clusterMask;  // foreground after clean-up (255), frame-sized
+    std::vector<StageReport> report;
+    float nearDepth_m = 0.0f, farDepth_m = 0.0f;  // the band actually used
+    std::string noBladesReason;                   // set when blades is empty
+    [[nodiscard]] bool empty() const { return blades.empty(); }
+    [[nodiscard]] std::vector<cv::Point> cutPoints_px() const;
+    [[nodiscard]] double totalTime_ms() const;
+    // One line per stage and flag, for logs and the CLI.
+    [[nodiscard]] std::string summary() const;
+};
+
+class Segmenter {
+public:
+    explicit Segmenter(SegmenterParams params = {});  // throws CaptureError if params.problem()
+    ~Segmenter();
+    Segmenter(Segmenter&&) noexcept;
+    Segmenter& operator=(Segmenter&&) noexcept;
+
+    [[nodiscard]] Segmentation segment(const DepthFrame& frame) const;
+    // Temporal fusion: per-pixel median of the valid readings of a still tuft. All frames must
+    // share size and intrinsics.
+    [[nodiscard]] Segmentation segment(std::span<const DepthFrame> frames) const;
+    // From a mask alone (no depth): clean-up, contours, partition and flags.
+    [[nodiscard]] Segmentation segmentMask(const cv::Mat1b& mask) const;
+
+    [[nodiscard]] const SegmenterParams& params() const;
+
+private:
+    struct Impl;
+    std::unique_ptr<Impl> impl_;
+};
+
+// PNG with the depth (grey), the mask, every blade in its own colour, contours, the centre
+// and base point, and the cut points (Fan & Sheng 2017, Fig. 4). Written atomically; throws
+// CaptureError naming the path on failure.
+void writeDebugOverlay(const std::filesystem::path& path, const DepthFrame& frame,
+                       const Segmentation& segmentation);
+// The same picture as an 8-bit BGR image.
+[[nodiscard]] cv::Mat3b renderDebugOverlay(const DepthFrame& frame,
+                                           const Segmentation& segmentation);
+
+}  // namespace meadow::capture
