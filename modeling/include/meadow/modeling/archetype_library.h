@@ -1,0 +1,42 @@
+#pragma once
+// The archetype library: the product of capture, the input of the renderer. On disk it is a
+// versioned JSON file (README, "Archetype library format"), optionally with a glTF 2.0 .glb
+// holding one mesh per archetype for DCC tools.
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "meadow/modeling/archetype.h"
+
+namespace meadow::modeling {
+
+inline constexpr const char* kArchetypeLibraryFormat = "meadow.archetype-library";
+inline constexpr int kArchetypeLibraryVersion = 1;
+
+// A record that archetypes were merged as near-duplicates (--max-archetypes).
+struct ArchetypeMerge {
+    std::string kept;                 // name of the archetype that stands for the group
+    std::vector<std::string> merged;  // names folded into it
+    float shapeDistance_m = 0.f;      // largest shape distance inside the group
+};
+
+struct ArchetypeLibrary {
+    std::string generator = "meadow";  // what wrote it (e.g. "meadow capture 0.1.0")
+    std::string source;                // where the blades came from (recording path, preset)
+    std::vector<Archetype> archetypes;
+    std::vector<ArchetypeMerge> merges;
+};
+
+// Throws ModelingError naming the file and the first problem: not JSON, wrong format name,
+// unknown version, a missing field, NaN/Inf or out-of-range values, an empty library.
+ArchetypeLibrary loadArchetypeLibrary(const std::filesystem::path& jsonPath);
+// Written atomically: a failed write leaves any previous file untouched.
+void saveArchetypeLibrary(const ArchetypeLibrary& library, const std::filesystem::path& jsonPath);
+
+// Parse / serialise without files (the loader and writer use these).
+ArchetypeLibrary parseArchetypeLibrary(const std::string& jsonText, const std::string& origin);
+std::string serialiseArchetypeLibrary(const ArchetypeLibrary& library);
+
+std::string toString(AnalyticShape shape);
+
+}  // namespace meadow::modeling
