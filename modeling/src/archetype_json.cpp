@@ -48,6 +48,20 @@ json archetypeToJson(const Archetype& a) {
     j["width_m"] = a.width.width_m;
     j["nearest_shape"] = toString(a.nearestShape);
     j["tau"] = a.tau;
+    j["fit"] = {{"spine_rms_mm", a.fit.spineRms_mm},
+                {"spine_max_mm", a.fit.spineMax_mm},
+                {"width_mae_mm", a.fit.widthMae_mm},
+                {"width_max_mm", a.fit.widthMax_mm},
+                {"shape_error_mm", a.fit.shapeError_mm},
+                {"width_check_mae_mm", a.fit.widthCheckMae_mm},
+                {"side_length_ratio", a.fit.sideLengthRatio},
+                {"asymmetric", a.fit.asymmetric},
+                {"skeleton_points", a.fit.skeletonPoints}};
+    j["source"] = {{"recording", a.source.recording},
+                   {"frame", a.source.frame},
+                   {"blade_id", a.source.bladeId}};
+    j["knots_m"] = json::array();
+    for (const glm::vec3& k : a.knots_m) j["knots_m"].push_back(vec3ToJson(k));
     return j;
 }
 
@@ -72,6 +86,40 @@ Archetype archetypeFromJson(const json& value, const std::string& path) {
         shapeFromString(r.string("nearest_shape", "quadratic"), r.pathOf("nearest_shape"));
     a.tau = r.number("tau", 0.5f);
     if (a.tau < 0.f || a.tau > 1.f) throw JsonFieldError(r.pathOf("tau"), "must lie in [0, 1]");
+    // Fit report, source and knots are optional: an authored archetype has none.
+    if (r.has("fit")) {
+        const JsonReader fit(r.object("fit"), r.pathOf("fit"));
+        a.fit.spineRms_mm = fit.number("spine_rms_mm", 0.f);
+        a.fit.spineMax_mm = fit.number("spine_max_mm", 0.f);
+        a.fit.widthMae_mm = fit.number("width_mae_mm", 0.f);
+        a.fit.widthMax_mm = fit.number("width_max_mm", 0.f);
+        a.fit.shapeError_mm = fit.number("shape_error_mm", 0.f);
+        a.fit.widthCheckMae_mm = fit.number("width_check_mae_mm", 0.f);
+        a.fit.sideLengthRatio = fit.number("side_length_ratio", 1.f);
+        if (fit.has("asymmetric")) {
+            const json& flag = r.object("fit")["asymmetric"];
+            if (!flag.is_boolean())
+                throw JsonFieldError(fit.pathOf("asymmetric"), "must be true or false");
+            a.fit.asymmetric = flag.get<bool>();
+        }
+        a.fit.skeletonPoints = fit.has("skeleton_points") ? fit.integer("skeleton_points") : 0;
+    }
+    if (r.has("source")) {
+        const JsonReader src(r.object("source"), r.pathOf("source"));
+        a.source.recording = src.string("recording", "");
+        a.source.frame = src.has("frame") ? src.integer("frame") : -1;
+        a.source.bladeId = src.has("blade_id") ? src.integer("blade_id") : 0;
+    }
+    if (r.has("knots_m")) {
+        const json& knots = r.array("knots_m");
+        for (std::size_t i = 0; i < knots.size(); ++i) {
+            const std::string p = r.pathOf("knots_m") + "[" + std::to_string(i) + "]";
+            if (!knots[i].is_array() || knots[i].size() != 3)
+                throw JsonFieldError(p, "must be an array of 3 numbers");
+            a.knots_m.push_back({finiteNumber(knots[i][0], p), finiteNumber(knots[i][1], p),
+                                 finiteNumber(knots[i][2], p)});
+        }
+    }
     return a;
 }
 

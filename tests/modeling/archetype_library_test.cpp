@@ -23,6 +23,11 @@ ArchetypeLibrary sampleLibrary() {
     a.width.width_m = {0.010f, 0.014f, 0.012f, 0.006f, 0.0005f};
     a.nearestShape = AnalyticShape::TriangleTip;
     a.tau = 0.7f;
+    a.fit.spineRms_mm = 0.4f;
+    a.fit.asymmetric = true;
+    a.fit.skeletonPoints = 57;
+    a.source = {"samples/recordings/quadratic-leaf", 2, 3};
+    a.knots_m = {{0, 0, 0}, {0.02f, 0.1f, 0}, {0.05f, 0.15f, -0.001f}};
     Archetype b = a;
     b.name = "grass-2";
     b.width.width_m = {0.003f, 0.0f};
@@ -65,6 +70,13 @@ TEST(ArchetypeLibrary, WriteThenReadIsIdentity) {
         EXPECT_EQ(a.width.width_m, b.width.width_m);
         EXPECT_EQ(a.nearestShape, b.nearestShape);
         EXPECT_EQ(a.tau, b.tau);
+        EXPECT_EQ(a.fit.spineRms_mm, b.fit.spineRms_mm);
+        EXPECT_EQ(a.fit.asymmetric, b.fit.asymmetric);
+        EXPECT_EQ(a.fit.skeletonPoints, b.fit.skeletonPoints);
+        EXPECT_EQ(a.source.recording, b.source.recording);
+        EXPECT_EQ(a.source.frame, b.source.frame);
+        EXPECT_EQ(a.source.bladeId, b.source.bladeId);
+        EXPECT_EQ(a.knots_m, b.knots_m);
     }
     ASSERT_EQ(back.merges.size(), 1u);
     EXPECT_EQ(back.merges[0].merged, lib.merges[0].merged);
