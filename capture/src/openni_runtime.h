@@ -1,0 +1,52 @@
+#pragma once
+// OpenNI2 plumbing (namespace ni, so that ::openni stays OpenNI2's own) shared by capture's OpenNI2
+// sources and converters (private to capture/): one refcounted initialisation of the library, error
+// text, and where its drivers live.
+//
+// OpenNI2 finds its drivers in <folder of the libOpenNI2.so.0 that was loaded>/OpenNI2/Drivers
+// (lib*.so.0 files). meadow builds a private copy of that layout, with its own driver that
+// serves a meadow recording folder as a live device; a process uses it when it starts with
+// LD_LIBRARY_PATH=<private folder>/lib (the `meadow` command re-executes itself that way).
+#include <filesystem>
+#include <memory>
+#include <string>
+
+namespace meadow::capture::ni {
+
+// File name of meadow's driver inside a driver folder.
+inline constexpr const char* kMeadowDriverFileName = "libMeadowRecordingDevice.so.0";
+// Environment variables: where the private driver folder is (overrides the build-tree path),
+// and the recording folder meadow's driver lists as its device.
+inline constexpr const char* kPrivateFolderVariable = "MEADOW_OPENNI2_DIR";
+inline constexpr const char* kRecordingVariable = "MEADOW_OPENNI_RECORDING";
+
+// Holding one keeps OpenNI2 initialised; the last holder to go shuts it down.
+class Runtime {
+public:
+    // Initialises OpenNI2 unless a holder exists already. Throws CaptureError when the driver
+    // folder is missing or OpenNI2 refuses to start.
+    static std::shared_ptr<Runtime> acquire();
+    ~Runtime();
+    Runtime(const Runtime&) = delete;
+    Runtime& operator=(const Runtime&) = delete;
+
+private:
+    Runtime() = default;
+};
+
+// OpenNI's own last error text, whitespace trimmed, or "no details from OpenNI2".
+std::string lastError();
+
+// Folder of the libOpenNI2.so.0 loaded into this process, and the driver folder beside it.
+std::filesystem::path loadedLibraryFolder();
+std::filesystem::path driverFolder();
+// True when meadow's driver sits in driverFolder().
+bool meadowDriverInstalled();
+
+// The private driver folder (holding lib/libOpenNI2.so.0 and lib/OpenNI2/Drivers/): the value
+// of MEADOW_OPENNI2_DIR if set, else the one the build made. Empty when neither exists.
+std::filesystem::path privateFolder();
+// One sentence telling a user how to get meadow's driver loaded.
+std::string howToLoadMeadowDriver();
+
+}  // namespace meadow::capture::ni
