@@ -1,0 +1,104 @@
+#pragma once
+// From one blade's contour and depth to a blade archetype (Fan & Sheng 2017, Sec. 4.3-4.4, 5.2):
+// skeleton and widths (skeleton.h), refined knots (skeleton_refiner.h), a quadratic Bezier spine
+// fitted by least squares with parameter correction, expressed in archetype.h's blade-local frame,
+// a width profile over normalised arc length, and the nearest analytic shape of Jahrmann &
+// Wimmer 2017. Every fit error is recorded in Archetype::fit.
+#include <glm/mat3x3.hpp>
+#include <glm/vec3.hpp>
+#include <vector>
+
+#include "meadow/capture/blade_contour.h"
+#include "meadow/capture/depth_frame.h"
+#include "meadow/modeling/archetype.h"
+#include "meadow/modeling/chain_simulation.h"
+#include "meadow/modeling/skeleton.h"
+#include "meadow/modeling/skeleton_refiner.h"
+
+namespace meadow::modeling {
+
+// ---- Spine (blade_fit_spine.cpp) ----------------------------------------------------------
+struct SpineFit {
+    QuadraticBezier spine_m;
+    std::vector<float> t;  // parameter of each input point's closest spine point
+    float rms_m = 0.f;     // RMS distance of the points to the spine
+    float max_m = 0.f;
+};
+// Least-squares middle control point with v0 and v2 fixed, for given parameters t_j:
+//   v1 = sum_j b_j (P_j - (1 - t_j)^2 v0 - t_j^2 v2) / sum_j b_j^2,  b_j = 2 (1 - t_j) t_j.
+glm::vec3 leastSquaresMiddleControlPoint(const std::vector<glm::vec3>& points,
+                                         const std::vector<float>& t, const glm::vec3& v0,
+                                         const glm::vec3& v2);
+// Fits a quadratic Bezier with v0 = points.front() and v2 = points.back(): chord-length
+// parameters, then alternately the closed-form v1 and one Newton step per point on
+// f(t) = (B(t) - P) . B'(t) (parameter correction, Hoschek 1988). Requires >= 3 points.
+SpineFit fitQuadraticBezier(const std::vector<glm::vec3>& points_m, int iterations = 25);
+
+// ---- Blade-local frame (blade_fit_frame.cpp) ------------------------------------------------
+// local = localFromCamera * (camera - origin_m). +Y along the spine's base tangent, +X toward the
+// tip's offset from that line (the bend), +Z = X x Y. A straight spine takes X from
+// acrossHint (the blade's width direction in camera space) or, failing that, any perpendicular.
+struct BladeFrame {
+    glm::vec3 origin_m{0.f};
+    glm::mat3 localFromCamera{1.f};
+    [[nodiscard]] glm::vec3 toLocal(const glm::vec3& camera_m) const;
+    [[nodiscard]] glm::vec3 toCamera(const glm::vec3& local_m) const;
+};
+BladeFrame bladeLocalFrame(const QuadraticBezier& spineCamera_m, const glm::vec3& acrossHint);
+
+// ---- Width profile (blade_fit_width.cpp) --------------------------------------------------
+// Piecewise-linear profile with `samples` evenly spaced values (archetype.h's WidthProfile),
+// least squares against measured widths at arc-length fractions s (hat-function basis, with a
+// small second-difference penalty so that a sample with no measurement near it is interpolated).
+// Widths are clamped to >= 0. Requires samples >= 2 and s, width_m of the same non-zero size.
+WidthProfile fitWidthProfile(const std::vector<float>& s, const std::vector<float>& width_m,
+                             int samples);
+// Mean |profile(s_j) - width_j|.
+float widthProfileMae_m(const WidthProfile& profile, const std::vector<float>& s,
+                        const std::vector<float>& width_m);
+
+// ---- Nearest analytic shape (blade_fit_shape.cpp) -----------------------------------------
+// Width of Jahrmann & Wimmer 2017's analytic blade shapes (Sec. 6.2) as a fraction of the base
+// width at height fraction v: quad 1; triangle 1 - v; quadratic 1 - v^2; triangle-tip 1 below
+// tau, then linear to 0 at the tip. (They parameterise by the Bezier parameter; here v is the
+// arc-length fraction, which is what WidthProfile is sampled on.)
+float analyticShapeWidthFraction(AnalyticShape shape, float v, float tau);
+struct ShapeFit {
+    AnalyticShape shape = AnalyticShape::Quad;
+    float baseWidth_m = 0.f;  // least-squares scale of the shape
+    float tau = 0.5f;
+    float error_m = 0.f;  // mean |shape - profile| over the profile's samples
+};
+ShapeFit nearestAnalyticShape(const WidthProfile& profile);
+
+// ---- The whole fit (blade_fit.cpp) --------------------------------------------------------
+struct BladeFitParams {
+    SkeletonParams skeleton;
+    int spineIterations = 25;
+    // Width profile: `widthSamples` values, or, when widthTolerance_m > 0, the fewest (>= 2, <=
+    // widthSamples) whose mean absolute error against the measured widths is within tolerance.
+    int widthSamples = 16;
+    float widthTolerance_m = 0.f;
+    // Refined knot count (Fan & Sheng 2017, Algorithm 1); 0 skips refining.
+    int refinedKnots = 16;
+    RefinerParams refiner;
+    ChainSimulationParams simulation;  // up and gravity are overridden to the blade-local +Y
+};
+
+struct BladeFit {
+    Archetype archetype;            // blade-local frame
+    QuadraticBezier spineCamera_m;  // the same spine in camera space
+    BladeFrame frame;
+    Skeleton skeleton;
+};
+
+// Fits an archetype to a skeleton already lifted to 3D. `mask` may be empty (no DT width check).
+BladeFit fitArchetype(const Skeleton& skeleton, const BladeFitParams& params = {},
+                      const Source& source = {}, const cv::Mat1b& mask = {},
+                      const capture::Intrinsics* intrinsics = nullptr);
+// Contour + depth to archetype: extractSkeleton then fitArchetype. Throws ModelingError when the
+// blade cannot be fitted (no depth, degenerate skeleton).
+BladeFit fitBlade(const capture::BladeContour& blade, const capture::DepthFrame& frame,
+                  const BladeFitParams& params = {}, const Source& source = {});
+
+}  // namespace meadow::modeling

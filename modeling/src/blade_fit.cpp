@@ -1,0 +1,123 @@
+// One blade contour to one archetype: skeleton, refined knots, spine, width profile, shape.
+#include "meadow/modeling/blade_fit.h"
+
+#include <algorithm>
+#include <cmath>
+#include <glm/geometric.hpp>
+#include <string>
+
+#include "meadow/modeling/error.h"
+
+namespace meadow::modeling {
+namespace {
+
+constexpr float kMillimetresPerMetre = 1000.f;
+constexpr float kStandardGravity_mps2 = 9.81f;
+// The DT width check skips this fraction of the chain at each end, where the mask is cut (base)
+// or narrower than a pixel (tip) and the DT does not measure the blade's width.
+constexpr float kWidthCheckMargin = 0.15f;
+
+WidthProfile profileWithinTolerance(const std::vector<float>& s, const std::vector<float>& w,
+                                    const BladeFitParams& params) {
+    if (params.widthTolerance_m > 0.f) {
+        for (int n = 2; n < params.widthSamples; ++n) {
+            WidthProfile p = fitWidthProfile(s, w, n);
+            if (widthProfileMae_m(p, s, w) <= params.widthTolerance_m) return p;
+        }
+    }
+    return fitWidthProfile(s, w, params.widthSamples);
+}
+
+}  // namespace
+
+BladeFit fitArchetype(const Skeleton& skeleton, const BladeFitParams& params, const Source& source,
+                      const cv::Mat1b& mask, const capture::Intrinsics* intrinsics) {
+    const std::vector<glm::vec3>& points = skeleton.points_m;
+    if (points.size() < 3 || skeleton.width_m.size() != points.size())
+        throw ModelingError("fitArchetype: blade " + std::to_string(source.bladeId) + " of frame " +
+                            std::to_string(source.frame) + " has " + std::to_string(points.size()) +
+                            " skeleton points (need >= 3 with widths); check the contour");
+    BladeFit out;
+    out.skeleton = skeleton;
+    const SpineFit spine = fitQuadraticBezier(points, params.spineIterations);
+    const float length_m = spine.spine_m.length();
+    if (!(length_m > 0.f))
+        throw ModelingError("fitArchetype: blade " + std::to_string(source.bladeId) + " of frame " +
+                            std::to_string(source.frame) +
+                            " has a zero-length spine; check the contour's tip");
+    out.spineCamera_m = spine.spine_m;
+    const glm::vec2 across =
+        skeleton.across_px.empty() ? glm::vec2(1.f, 0.f) : skeleton.across_px.front();
+    out.frame = bladeLocalFrame(spine.spine_m, glm::vec3(across, 0.f));
+
+    Archetype& a = out.archetype;
+    a.spine_m = {glm::vec3(0.f), out.frame.toLocal(spine.spine_m.v1),
+                 out.frame.toLocal(spine.spine_m.v2)};
+    a.source = source;
+    a.name = "f" + std::to_string(source.frame) + "-b" + std::to_string(source.bladeId);
+
+    // Width profile over the fitted spine's arc length: each skeleton point sits at the arc
+    // fraction of its closest spine point (robust to depth noise lengthening the polyline).
+    std::vector<float> s(points.size());
+    for (std::size_t j = 0; j < points.size(); ++j)
+        s[j] = spine.spine_m.lengthTo(spine.t[j]) / length_m;
+    a.width = profileWithinTolerance(s, skeleton.width_m, params);
+    const ShapeFit shape = nearestAnalyticShape(a.width);
+    a.nearestShape = shape.shape;
+    a.tau = shape.tau;
+
+    FitReport& r = a.fit;
+    r.spineRms_mm = spine.rms_m * kMillimetresPerMetre;
+    r.spineMax_mm = spine.max_m * kMillimetresPerMetre;
+    r.widthMae_mm = widthProfileMae_m(a.width, s, skeleton.width_m) * kMillimetresPerMetre;
+    for (std::size_t j = 0; j < s.size(); ++j)
+        r.widthMax_mm = std::max(
+            r.widthMax_mm, std::abs(a.width.at(s[j]) - skeleton.width_m[j]) * kMillimetresPerMetre);
+    r.shapeError_mm = shape.error_m * kMillimetresPerMetre;
+    r.sideLengthRatio = skeleton.sideLengthRatio;
+    r.asymmetric = skeleton.asymmetric;
+    r.skeletonPoints = static_cast<int>(points.size());
+    if (!mask.empty() && intrinsics != nullptr && skeleton.width_px.size() == points.size()) {
+        const std::vector<float> dt_px = distanceTransformWidth_px(mask, skeleton.midline_px);
+        double sum = 0.0;
+        int used = 0;
+        for (std::size_t j = 0; j < points.size(); ++j) {
+            const float f = static_cast<float>(j) / static_cast<float>(points.size() - 1);
+            if (f < kWidthCheckMargin || f > 1.f - kWidthCheckMargin || skeleton.width_px[j] <= 0.f)
+                continue;
+            const float metresPerPixel = skeleton.width_m[j] / skeleton.width_px[j];
+            sum += std::abs(dt_px[j] - skeleton.width_px[j]) * metresPerPixel;
+            ++used;
+        }
+        r.widthCheckMae_mm = used > 0 ? static_cast<float>(sum / used) * kMillimetresPerMetre : 0.f;
+    }
+
+    // Refined knots (Fan & Sheng 2017, Algorithm 1) on the skeleton in the blade-local frame,
+    // moved by the chain simulation with gravity along -Y.
+    std::vector<glm::vec3> local(points.size());
+    for (std::size_t j = 0; j < points.size(); ++j) local[j] = out.frame.toLocal(points[j]);
+    if (params.refinedKnots > 0) {
+        if (params.refinedKnots >= static_cast<int>(local.size())) {
+            a.knots_m = local;
+        } else {
+            ChainSimulationParams sim = params.simulation;
+            sim.up = {0.f, 1.f, 0.f};
+            sim.gravity_mps2 = {0.f, -kStandardGravity_mps2, 0.f};
+            const KnotTrajectories frames = simulateChain(local, sim);
+            for (int k : refineByMovementSimilarity(frames, params.refinedKnots, params.refiner))
+                a.knots_m.push_back(local[k]);
+        }
+    }
+    return out;
+}
+
+BladeFit fitBlade(const capture::BladeContour& blade, const capture::DepthFrame& frame,
+                  const BladeFitParams& params, const Source& source) {
+    Source src = source;
+    if (src.frame < 0) src.frame = frame.index;
+    if (src.bladeId == 0) src.bladeId = blade.id;
+    const Skeleton skeleton = extractSkeleton(blade, frame, params.skeleton);
+    return fitArchetype(skeleton, params, src, blade.mask, &frame.intrinsics);
+}
+
+}  // namespace meadow::modeling

@@ -1,0 +1,295 @@
+// Symmetric contour matching and back-projection (Fan & Sheng 2017, Sec. 4.3).
+#include "meadow/modeling/skeleton.h"
+
+#include <algorithm>
+#include <cmath>
+#include <glm/geometric.hpp>
+#include <stdexcept>
+
+#include "meadow/modeling/error.h"
+
+namespace meadow::modeling {
+namespace {
+
+// cv::findContours returns the centres of the boundary pixels, half a pixel inside the true
+// silhouette on every side: a blade w pixels wide has boundary centres w - 1 pixels apart. This
+// adds the missing pixel back to every matched width, and half a pixel to each end of the chain.
+constexpr float kBoundaryFootprint_px = 1.f;
+constexpr float kHalfPixel_px = 0.5f;
+// Fraction of the chain used to estimate the end tangents for the half-pixel extension: adjacent
+// points of a 128-point chain are closer than a pixel, so their difference is pure rounding.
+constexpr float kEndTangentFraction = 0.08f;
+// Running-median half window (points) for the flying-pixel test along the chain.
+constexpr int kDepthMedianHalfWindow = 6;
+// Half window (as a fraction of the chain) of the local linear regression that smooths depth
+// along the chain; at the ends it extrapolates from the interior, where readings are reliable.
+constexpr float kDepthRegressionFraction = 0.06f;
+// Skeleton points within this fraction of either end are left out of the ridge test: at the tip
+// and base the mask is cut and the DT does not see the blade's width.
+constexpr float kRidgeTestMargin = 0.15f;
+
+template <class V>
+std::vector<V> resample(const std::vector<V>& polyline, int n) {
+    if (n < 2)
+        throw std::invalid_argument("resampleByArcLength: n must be >= 2, got " +
+                                    std::to_string(n));
+    if (polyline.empty()) throw std::invalid_argument("resampleByArcLength: empty polyline");
+    std::vector<float> cumulative(polyline.size(), 0.f);
+    for (std::size_t i = 1; i < polyline.size(); ++i)
+        cumulative[i] = cumulative[i - 1] + glm::distance(polyline[i - 1], polyline[i]);
+    const float total = cumulative.back();
+    std::vector<V> out(static_cast<std::size_t>(n));
+    if (total <= 0.f) {
+        std::fill(out.begin(), out.end(), polyline.front());
+        return out;
+    }
+    std::size_t seg = 0;
+    for (int k = 0; k < n; ++k) {
+        const float target = total * static_cast<float>(k) / static_cast<float>(n - 1);
+        while (seg + 2 < polyline.size() && cumulative[seg + 1] < target) ++seg;
+        if (polyline.size() == 1) {
+            out[k] = polyline.front();
+            continue;
+        }
+        const float len = cumulative[seg + 1] - cumulative[seg];
+        const float f = len > 0.f ? std::clamp((target - cumulative[seg]) / len, 0.f, 1.f) : 0.f;
+        out[k] = polyline[seg] + f * (polyline[seg + 1] - polyline[seg]);
+    }
+    out.front() = polyline.front();
+    out.back() = polyline.back();
+    return out;
+}
+
+float polylineLength(const std::vector<glm::vec2>& p) {
+    float sum = 0.f;
+    for (std::size_t i = 1; i < p.size(); ++i) sum += glm::distance(p[i - 1], p[i]);
+    return sum;
+}
+
+float median(std::vector<float> v) {
+    const auto mid = v.begin() + static_cast<std::ptrdiff_t>(v.size() / 2);
+    std::nth_element(v.begin(), mid, v.end());
+    return *mid;
+}
+
+glm::vec2 safeNormalize(glm::vec2 v, glm::vec2 fallback) {
+    const float len = glm::length(v);
+    return len > 1e-6f ? v / len : fallback;
+}
+
+// Median of the valid depth readings (metres) inside the blade mask in a square window around
+// (u, v); NaN when there is none. Restricting to the mask keeps the background out; the median
+// keeps the minority of flying pixels on the blade's edge out.
+float windowDepth_m(const capture::DepthFrame& frame, const cv::Mat1b& mask, glm::vec2 p_px,
+                    int r) {
+    const int u0 = static_cast<int>(std::lround(p_px.x)),
+              v0 = static_cast<int>(std::lround(p_px.y));
+    std::vector<float> values;
+    for (int v = v0 - r; v <= v0 + r; ++v) {
+        if (v < 0 || v >= frame.depth_mm.rows) continue;
+        for (int u = u0 - r; u <= u0 + r; ++u) {
+            if (u < 0 || u >= frame.depth_mm.cols) continue;
+            if (!mask.empty() && mask(v, u) == 0) continue;
+            const std::uint16_t d = frame.depth_mm(v, u);
+            if (d > 0) values.push_back(static_cast<float>(d) * 1e-3f);
+        }
+    }
+    return values.empty() ? std::nanf("") : median(std::move(values));
+}
+
+// Drops readings that jump away from the running median of their chain neighbours (flying
+// pixels, holes' edges), then fills every gap by linear interpolation along the chain
+// (constant beyond the last valid reading). Returns how many entries were filled.
+int rejectAndFill(std::vector<float>& z, float maxJump_m) {
+    const int n = static_cast<int>(z.size());
+    std::vector<float> cleaned = z;
+    for (int i = 0; i < n; ++i) {
+        if (std::isnan(z[i])) continue;
+        std::vector<float> window;
+        for (int j = std::max(0, i - kDepthMedianHalfWindow);
+             j <= std::min(n - 1, i + kDepthMedianHalfWindow); ++j)
+            if (!std::isnan(z[j])) window.push_back(z[j]);
+        if (std::abs(z[i] - median(window)) > maxJump_m) cleaned[i] = std::nanf("");
+    }
+    int filled = 0;
+    int lastValid = -1;
+    for (int i = 0; i < n; ++i) {
+        if (std::isnan(cleaned[i])) continue;
+        if (lastValid < 0) {
+            for (int j = 0; j < i; ++j) cleaned[j] = cleaned[i];
+        } else {
+            for (int j = lastValid + 1; j < i; ++j) {
+                const float f =
+                    static_cast<float>(j - lastValid) / static_cast<float>(i - lastValid);
+                cleaned[j] = cleaned[lastValid] * (1.f - f) + cleaned[i] * f;
+            }
+        }
+        filled += i - lastValid - 1;
+        lastValid = i;
+    }
+    if (lastValid < 0) return n;  // nothing valid; caller throws
+    for (int j = lastValid + 1; j < n; ++j) cleaned[j] = cleaned[lastValid];
+    filled += n - 1 - lastValid;
+    z = std::move(cleaned);
+    return filled;
+}
+
+// Local linear regression of depth against the chain index over a window of +-h points: smooths
+// sensor noise and quantisation steps while following the blade's slope in depth.
+std::vector<float> regressDepth(const std::vector<float>& z, int h) {
+    const int n = static_cast<int>(z.size());
+    std::vector<float> out(z.size());
+    for (int i = 0; i < n; ++i) {
+        const int lo = std::max(0, i - h), hi = std::min(n - 1, i + h);
+        double sx = 0, sy = 0, sxx = 0, sxy = 0;
+        const double m = hi - lo + 1;
+        for (int j = lo; j <= hi; ++j) {
+            const double x = j - i;
+            sx += x, sy += z[j], sxx += x * x, sxy += x * z[j];
+        }
+        const double det = m * sxx - sx * sx;
+        // Intercept at x = 0 (the point itself) of the least-squares line.
+        out[i] = det > 1e-9 ? static_cast<float>((sxx * sy - sx * sxy) / det)
+                            : static_cast<float>(sy / m);
+    }
+    return out;
+}
+
+}  // namespace
+
+std::vector<glm::vec2> resampleByArcLength(const std::vector<glm::vec2>& polyline, int n) {
+    return resample(polyline, n);
+}
+std::vector<glm::vec3> resampleByArcLength(const std::vector<glm::vec3>& polyline, int n) {
+    return resample(polyline, n);
+}
+
+std::vector<float> smoothWidths(const std::vector<float>& width, int passes) {
+    const std::size_t n = width.size();
+    if (n < 3) return width;
+    std::vector<float> w = width;
+    for (std::size_t i = 1; i + 1 < n; ++i) w[i] = median({width[i - 1], width[i], width[i + 1]});
+    for (int p = 0; p < passes; ++p) {
+        std::vector<float> next = w;
+        for (std::size_t i = 1; i + 1 < n; ++i)
+            next[i] = 0.25f * w[i - 1] + 0.5f * w[i] + 0.25f * w[i + 1];
+        w = std::move(next);
+    }
+    return w;
+}
+
+Skeleton matchSymmetricContour(const capture::BladeContour& blade, const SkeletonParams& params) {
+    const int count = static_cast<int>(blade.contour_px.size());
+    if (count < 3 || blade.tipIndex <= 0 || blade.tipIndex >= count - 1)
+        throw std::invalid_argument(
+            "matchSymmetricContour: need >= 3 contour points and 0 < tipIndex < " +
+            std::to_string(count - 1) + ", got " + std::to_string(count) + " points, tipIndex " +
+            std::to_string(blade.tipIndex));
+    if (params.points < 3)
+        throw std::invalid_argument("matchSymmetricContour: params.points must be >= 3, got " +
+                                    std::to_string(params.points));
+    std::vector<glm::vec2> sideA, sideB;
+    for (int i = 0; i <= blade.tipIndex; ++i)
+        sideA.emplace_back(static_cast<float>(blade.contour_px[i].x),
+                           static_cast<float>(blade.contour_px[i].y));
+    for (int i = count - 1; i >= blade.tipIndex; --i)
+        sideB.emplace_back(static_cast<float>(blade.contour_px[i].x),
+                           static_cast<float>(blade.contour_px[i].y));
+
+    Skeleton s;
+    const float lengthA = polylineLength(sideA), lengthB = polylineLength(sideB);
+    s.sideLengthRatio = std::max(lengthA, lengthB) / std::max(std::min(lengthA, lengthB), 1e-6f);
+
+    const int n = params.points;
+    const std::vector<glm::vec2> a = resample(sideA, n), b = resample(sideB, n);
+    std::vector<float> rawWidth(static_cast<std::size_t>(n));
+    s.midline_px.resize(static_cast<std::size_t>(n));
+    s.across_px.resize(static_cast<std::size_t>(n));
+    for (int i = 0; i < n; ++i) {
+        s.midline_px[i] = 0.5f * (a[i] + b[i]);
+        const float d = glm::distance(a[i], b[i]);
+        rawWidth[i] = i == n - 1 ? 0.f : d + kBoundaryFootprint_px;
+        s.across_px[i] =
+            safeNormalize(b[i] - a[i], i > 0 ? s.across_px[i - 1] : glm::vec2(1.f, 0.f));
+    }
+    s.width_px = smoothWidths(rawWidth, params.widthSmoothingPasses);
+    s.width_px.back() = 0.f;
+
+    // Half-pixel extension of both ends along the chain's end tangents (see kHalfPixel_px).
+    const int k =
+        std::max(1, static_cast<int>(std::lround(kEndTangentFraction * static_cast<float>(n - 1))));
+    const glm::vec2 baseTangent = safeNormalize(s.midline_px[0] - s.midline_px[k], {0.f, 1.f});
+    const glm::vec2 tipTangent =
+        safeNormalize(s.midline_px[n - 1] - s.midline_px[n - 1 - k], {0.f, -1.f});
+    s.midline_px.front() += kHalfPixel_px * baseTangent;
+    s.midline_px.back() += kHalfPixel_px * tipTangent;
+
+    if (s.sideLengthRatio > params.maxSideLengthRatio) {
+        s.asymmetric = true;
+        s.reasons.push_back("contour sides differ in length by a factor " +
+                            std::to_string(s.sideLengthRatio) + " (> " +
+                            std::to_string(params.maxSideLengthRatio) + ")");
+    }
+    if (!blade.mask.empty()) {
+        const std::vector<float> dtWidth = distanceTransformWidth_px(blade.mask, s.midline_px);
+        double sum = 0.0;
+        int used = 0;
+        for (int i = 0; i < n; ++i) {
+            const float f = static_cast<float>(i) / static_cast<float>(n - 1);
+            if (f < kRidgeTestMargin || f > 1.f - kRidgeTestMargin || s.width_px[i] <= 0.f)
+                continue;
+            sum += std::abs(dtWidth[i] - s.width_px[i]) / s.width_px[i];
+            ++used;
+        }
+        s.ridgeOffsetFraction = used > 0 ? static_cast<float>(sum / used) : 0.f;
+        if (s.ridgeOffsetFraction > params.maxRidgeOffsetFraction) {
+            s.asymmetric = true;
+            s.reasons.push_back("midline is off the distance-transform ridge by " +
+                                std::to_string(s.ridgeOffsetFraction) + " of the half width (> " +
+                                std::to_string(params.maxRidgeOffsetFraction) + ")");
+        }
+    }
+    return s;
+}
+
+Skeleton extractSkeleton(const capture::BladeContour& blade, const capture::DepthFrame& frame,
+                         const SkeletonParams& params) {
+    if (frame.depth_mm.empty()) throw std::invalid_argument("extractSkeleton: empty depth frame");
+    if (!blade.mask.empty() && blade.mask.size() != frame.depth_mm.size())
+        throw std::invalid_argument("extractSkeleton: blade mask and depth frame differ in size");
+    Skeleton s = matchSymmetricContour(blade, params);
+    const int n = static_cast<int>(s.midline_px.size());
+
+    std::vector<float> z(static_cast<std::size_t>(n));
+    for (int i = 0; i < n; ++i)
+        z[i] = windowDepth_m(frame, blade.mask, s.midline_px[i], params.depthWindowRadius_px);
+    s.filledDepths = rejectAndFill(z, params.maxDepthJump_m);
+    if (s.filledDepths >= n)
+        throw ModelingError(
+            "extractSkeleton: blade " + std::to_string(blade.id) + " of frame " +
+            std::to_string(frame.index) +
+            " has no depth reading inside its mask; check the mask or the depth band");
+    const int h = std::max(
+        2, static_cast<int>(std::lround(kDepthRegressionFraction * static_cast<float>(n))));
+    s.depth_m = regressDepth(z, h);
+
+    const capture::Intrinsics& K = frame.intrinsics;
+    s.points_m.resize(static_cast<std::size_t>(n));
+    s.width_m.resize(static_cast<std::size_t>(n));
+    for (int i = 0; i < n; ++i) {
+        s.points_m[i] = K.backProject(s.midline_px[i].x, s.midline_px[i].y, s.depth_m[i]);
+        // The width is measured across the blade in the image; at the point's depth one pixel
+        // spans z / f metres along each image axis.
+        const glm::vec2 acrossPerPixel_m{s.across_px[i].x * s.depth_m[i] / K.fx_px,
+                                         s.across_px[i].y * s.depth_m[i] / K.fy_px};
+        s.width_m[i] = s.width_px[i] * glm::length(acrossPerPixel_m);
+    }
+    s.arcFraction.assign(static_cast<std::size_t>(n), 0.f);
+    for (int i = 1; i < n; ++i)
+        s.arcFraction[i] = s.arcFraction[i - 1] + glm::distance(s.points_m[i - 1], s.points_m[i]);
+    const float total = s.arcFraction.back();
+    for (float& f : s.arcFraction) f = total > 0.f ? f / total : 0.f;
+    return s;
+}
+
+}  // namespace meadow::modeling
