@@ -5,11 +5,13 @@
 #pragma once
 #include <cstddef>
 #include <cstdint>
+#include <glm/mat4x4.hpp>
 #include <glm/vec4.hpp>
 namespace meadow::runtime::gpu {
 using vec4 = glm::vec4;
 using uvec4 = glm::uvec4;
 using uint = std::uint32_t;
+using mat4 = glm::mat4;
 #endif
 
 #define BLADE_WORKGROUP_SIZE 64
@@ -23,6 +25,15 @@ using uint = std::uint32_t;
 #define CULL_STATS_SSBO_BINDING 5
 #define PATCH_SSBO_BINDING 6
 #define COLLIDER_SSBO_BINDING 7
+
+// Uniform buffer binding points.
+#define FRAME_UBO_BINDING 0
+
+// Analytic blade shapes of Jahrmann & Wimmer 2017, Sec. 6.2, in modeling::AnalyticShape's order.
+#define BLADE_SHAPE_QUAD 0
+#define BLADE_SHAPE_TRIANGLE 1
+#define BLADE_SHAPE_QUADRATIC 2
+#define BLADE_SHAPE_TRIANGLE_TIP 3
 
 // Samples of an archetype's width profile over normalised length (t = i / (N - 1)).
 #define ARCHETYPE_WIDTH_SAMPLES 16
@@ -46,12 +57,56 @@ struct BladeRestGpu {
 // 1 = widest) and the nearest analytic shape for the tessellation fallback.
 struct ArchetypeGpu {
     vec4 widthProfile[ARCHETYPE_WIDTH_SAMPLES / 4];
-    vec4 shape;  // x analytic shape id, y tau (triangle-tip), z unused, w unused
+    vec4 shape;  // x analytic shape id (BLADE_SHAPE_*), y tau (triangle-tip), z 1 = draw with
+                 // widthProfile, 0 = with the analytic shape, w unused
+};
+
+// glDrawArraysIndirect's command: the culling pass writes vertexCount (one patch vertex per
+// visible blade); the draw pass reads it from GL_DRAW_INDIRECT_BUFFER.
+struct DrawCommandGpu {
+    uint vertexCount;
+    uint instanceCount;
+    uint firstVertex;
+    uint baseInstance;
+};
+
+// Blades removed by each culling test this frame (Jahrmann & Wimmer 2017, Sec. 5).
+struct CullStatsGpu {
+    uint culledOrientation;
+    uint culledFrustum;
+    uint culledDistance;
+    uint culledOcclusion;
+};
+
+// An equal-size patch of blades (Sec. 4): contiguous blade indices and a world-space box that
+// contains every pose its blades can reach (v0 +- the blade height in every direction).
+struct PatchGpu {
+    vec4 boundsMin_m;  // xyz world, w unused
+    vec4 boundsMax_m;  // xyz world, w unused
+    uvec4 range;       // x first blade, y blade count, zw unused
+};
+
+// A sphere that pushes blades (Sec. 5.1, collision).
+struct ColliderGpu {
+    vec4 center_radius_m;  // xyz world centre (m), w radius (m)
+};
+
+// Per-frame values every pass may read (std140 and std430 agree on mat4/vec4).
+struct FrameGpu {
+    mat4 viewFromWorld;
+    mat4 clipFromWorld;
+    vec4 cameraPosition_time;  // xyz camera position (world, m), w time (s)
+    vec4 lightDirection;       // xyz unit direction toward the light (world), w intensity
+    vec4 viewport_px;          // xy framebuffer size (px), z near (m), w far (m)
+    vec4 wind;                 // xyz wind direction (unit, world), w strength (m/s^2)
 };
 
 #ifdef __cplusplus
 static_assert(sizeof(BladeGpu) == 64 && offsetof(BladeGpu, up_direction) == 48);
 static_assert(sizeof(BladeRestGpu) == 32);
 static_assert(sizeof(ArchetypeGpu) == 80);
+static_assert(sizeof(DrawCommandGpu) == 16 && sizeof(CullStatsGpu) == 16);
+static_assert(sizeof(PatchGpu) == 48 && sizeof(ColliderGpu) == 16);
+static_assert(sizeof(FrameGpu) == 192 && offsetof(FrameGpu, cameraPosition_time) == 128);
 }  // namespace meadow::runtime::gpu
 #endif
