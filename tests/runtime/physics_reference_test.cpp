@@ -1,0 +1,223 @@
+// The CPU reference of the per-blade physics (Jahrmann & Wimmer 2017, Sec. 5), which compiles
+// shaders/common_physics.glsl as C++. These properties hold for the GPU pass by construction
+// (same text); physics_pass_GLTest.cpp checks that the GPU agrees with this reference.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <glm/geometric.hpp>
+#include <iostream>
+#include <random>
+#include <string>
+
+#include "meadow/modeling/quadratic_bezier.h"
+#include "physics_test_blades.h"
+
+namespace meadow::runtime {
+namespace {
+
+using testing::makeTestMeadow;
+
+constexpr float kDt_s = 1.f / 60.f;
+
+float exactLength(const gpu::BladeGpu& b) {
+    return modeling::QuadraticBezier{glm::vec3(b.v0_height), glm::vec3(b.v1_width),
+                                     glm::vec3(b.v2_stiffness)}
+        .length();
+}
+
+void step(testing::TestMeadow& m, const PhysicsSettings& s, std::uint32_t frame,
+          const std::vector<CollisionSphere>& spheres = {}) {
+    const auto colliders = packColliders(spheres);
+    physicsStepReference(m.blades, m.rests, colliders,
+                         packPhysicsParams(s, kDt_s, static_cast<float>(frame) * kDt_s,
+                                           static_cast<std::uint32_t>(m.blades.size()),
+                                           static_cast<std::uint32_t>(colliders.size())));
+}
+
+TEST(PhysicsReference, ShaderArcLengthMatchesDoubleClosedFormOnStraightBentAndFoldedCurves) {
+    std::mt19937 rng(7);
+    std::uniform_real_distribution<float> u(-1.f, 1.f);
+    std::vector<modeling::QuadraticBezier> curves = {
+        {{0, 0, 0}, {0, 0.5f, 0}, {0, 1, 0}},       // straight, uniform speed
+        {{0, 0, 0}, {0, 1, 0}, {0, 1, 0}},          // straight, v1 = v2 (Eq. (12) at lproj = 0)
+        {{0, 0, 0}, {0, 1, 0}, {0, 0.775f, 0}},     // folded back over the root (a cusp)
+        {{0, 0, 0}, {0, 0.05f, 0}, {0.98f, 0, 0}},  // pressed flat
+    };
+    for (int i = 0; i < 2000; ++i)
+        curves.push_back(
+            {{u(rng), u(rng), u(rng)}, {u(rng), u(rng), u(rng)}, {u(rng), u(rng), u(rng)}});
+    for (const auto& c : curves) {
+        const float truth = c.length();
+        const float L = shader::bezierArcLength(c.v0, c.v1, c.v2);
+        EXPECT_NEAR(L, truth, 2e-5f * std::max(truth, 1e-3f))
+            << "v0 " << c.v0.x << ',' << c.v0.y << ',' << c.v0.z << " v1 " << c.v1.x << ','
+            << c.v1.y << ',' << c.v1.z << " v2 " << c.v2.x << ',' << c.v2.y << ',' << c.v2.z;
+    }
+}
+
+TEST(PhysicsReference, PaperLengthEstimateIsExactWhenStraightAndOffByUpToEightPercentWhenFolded) {
+    const glm::vec3 v0{0.f}, up{0.f, 1.f, 0.f};
+    EXPECT_NEAR(shader::bezierLengthPaper(v0, {0, 0.5f, 0}, {0, 1, 0}), 1.f, 1e-6f);
+    // The folded blade of the arc-length test: Eq. (13) says 0.925, the curve is 0.857 long.
+    const float folded = shader::bezierLengthPaper(v0, {0, 1, 0}, {0, 0.775f, 0});
+    EXPECT_NEAR(folded, 0.925f, 1e-3f);
+    EXPECT_NEAR(shader::bezierArcLength(v0, {0, 1, 0}, {0, 0.775f, 0}), 0.8571f, 1e-3f);
+    (void)up;
+}
+
+TEST(PhysicsReference, ValidationLiftsTipAboveGroundAndKeepsLengthEqualToHeight) {
+    const glm::vec3 v0{1.f, 2.f, 3.f};
+    const glm::vec3 up = glm::normalize(glm::vec3(0.3f, 1.f, -0.2f));
+    const float h = 0.5f;
+    const glm::vec3 restTip = v0 + h * up;
+    const glm::vec3 restV1 = shader::middleControlPoint(v0, up, h, 0.f);
+    EXPECT_LT(glm::distance(restV1, v0 + h * up), 1e-6f) << "Eq. (12) at lproj = 0 is v0 + h up";
+    const glm::vec3 below = v0 - 0.2f * up + 0.3f * glm::vec3(1.f, 0.f, 0.f);
+    EXPECT_NEAR(glm::dot(shader::tipAboveGround(v0, below, up) - v0, up), 0.f, 1e-6f);
+    for (unsigned model : {PHYSICS_LENGTH_EXACT, PHYSICS_LENGTH_PAPER}) {
+        const ValidatedCurve c = validateBladeReference(v0, below, up, h, restV1, restTip, model);
+        EXPECT_GE(glm::dot(c.v2 - v0, up), -1e-6f);
+        const float L = modeling::QuadraticBezier{v0, c.v1, c.v2}.length();
+        EXPECT_NEAR(L, h, model == PHYSICS_LENGTH_EXACT ? 1e-4f * h : 0.02f * h)
+            << "model " << model;
+    }
+}
+
+TEST(PhysicsReference, BladeUnderNoForceKeepsItsRestShapeForThousandFrames) {
+    testing::TestMeadow m = makeTestMeadow(200, 1);
+    const testing::TestMeadow rest = m;
+    PhysicsSettings none = testing::calmSettings();
+    none.gravity_mps2 = 0.f;
+    none.gravityCenter_mps2 = 0.f;
+    for (std::uint32_t f = 0; f < 1000; ++f) step(m, none, f);
+    for (std::size_t i = 0; i < m.blades.size(); ++i) {
+        const float h = m.blades[i].v0_height.w;
+        EXPECT_LT(glm::distance(glm::vec3(m.blades[i].v2_stiffness),
+                                glm::vec3(rest.blades[i].v2_stiffness)),
+                  1e-5f * h)
+            << "blade " << i;
+        EXPECT_LT(
+            glm::distance(glm::vec3(m.blades[i].v1_width), glm::vec3(rest.blades[i].v1_width)),
+            1e-5f * h)
+            << "blade " << i;
+        EXPECT_NEAR(exactLength(m.blades[i]), h, 1e-5f * h) << "blade " << i;
+    }
+}
+
+TEST(PhysicsReference, GravityBendsTheBladeOverItsFrontAndKeepsItsLength) {
+    testing::TestMeadow m = makeTestMeadow(50, 2);
+    const testing::TestMeadow rest = m;
+    for (std::uint32_t f = 0; f < 600; ++f) step(m, testing::calmSettings(), f);
+    for (std::size_t i = 0; i < m.blades.size(); ++i) {
+        const glm::vec3 v0 = glm::vec3(m.blades[i].v0_height);
+        const glm::vec3 v2 = glm::vec3(m.blades[i].v2_stiffness);
+        const glm::vec3 restV2 = glm::vec3(rest.blades[i].v2_stiffness);
+        EXPECT_LT(v2.y, restV2.y) << "blade " << i << " did not sag under gravity";
+        EXPECT_NEAR(exactLength(m.blades[i]), m.blades[i].v0_height.w,
+                    1e-4f * m.blades[i].v0_height.w)
+            << "blade " << i;
+        (void)v0;
+    }
+}
+
+TEST(PhysicsReference, SphereOnTheTipPushesItOutAndRaisesCollisionStrengthWhichThenDecays) {
+    testing::TestMeadow m = makeTestMeadow(1, 3);
+    const glm::vec3 tip = glm::vec3(m.blades[0].v2_stiffness);
+    const glm::vec3 v0 = glm::vec3(m.blades[0].v0_height);
+    const float r = 0.1f;
+    // A sphere just above the tip, reaching 5 cm into it.
+    const CollisionSphere sphere{tip + (r - 0.05f) * glm::normalize(tip - v0), r};
+    step(m, testing::calmSettings(), 0, {sphere});
+    const float eta = m.rests[0].restV2_eta.w;
+    EXPECT_GT(eta, 0.f);
+    EXPECT_LE(eta, 1.f);
+    EXPECT_GT(glm::distance(glm::vec3(m.blades[0].v2_stiffness), sphere.center_m),
+              glm::distance(tip, sphere.center_m))
+        << "the tip was not pushed away from the sphere";
+    // eta decays by etaDecay_per_s each second: gone after eta / a seconds.
+    const auto frames =
+        static_cast<std::uint32_t>(std::ceil(eta / PhysicsSettings{}.etaDecay_per_s / kDt_s)) + 2;
+    for (std::uint32_t f = 1; f <= frames; ++f) step(m, testing::calmSettings(), f);
+    EXPECT_EQ(m.rests[0].restV2_eta.w, 0.f);
+}
+
+TEST(PhysicsReference, WindBlowingAlongTheBladeMovesNothing) {
+    // Eq. (7)-(8) through a full step: a straight blade pointing along the wind stays put.
+    testing::TestMeadow m;
+    const glm::vec3 v0{0.f}, up{0.f, 1.f, 0.f};
+    const float h = 0.4f;
+    m.blades.push_back({glm::vec4(v0, h), glm::vec4(v0 + h * up, 0.01f),
+                        glm::vec4(v0 + h * up, 10.f), glm::vec4(up, 0.f)});
+    m.rests.push_back({glm::vec4(v0 + h * up, 0.f), glm::vec4(v0 + h * up, 0.f)});
+    PhysicsSettings s = testing::calmSettings();
+    s.gravity_mps2 = 0.f;
+    s.gravityCenter_mps2 = 0.f;
+    s.windDirection = up;  // blowing along the blade
+    s.windWave_mps = 20.f;
+    for (std::uint32_t f = 0; f < 100; ++f) step(m, s, f);
+    EXPECT_LT(glm::distance(glm::vec3(m.blades[0].v2_stiffness), v0 + h * up), 1e-5f);
+}
+
+// The invariants of the brief, on the CPU reference: 256 blades, 10,000 frames (167 s at 60 Hz)
+// of strong wind and three sweeping spheres, then the storm stops.
+TEST(PhysicsReference, TenThousandStormFramesKeepBladesFiniteAboveGroundAtLengthAndTheyRecover) {
+    constexpr std::uint32_t kBlades = 256, kStormFrames = 10000, kCalmFrames = 1200;
+    testing::TestMeadow storm = makeTestMeadow(kBlades, 4);
+    testing::TestMeadow calm = storm;  // gravity only, the whole time: the pose to come back to
+    const PhysicsSettings stormy = testing::stormSettings(), still = testing::calmSettings();
+    float worstLengthError = 0.f, worstBelowGround = 0.f;
+    std::uint32_t collisions = 0;
+    for (std::uint32_t f = 0; f < kStormFrames; ++f) {
+        step(storm, stormy, f, testing::sweepingSpheres(f));
+        if (f < kCalmFrames) step(calm, still, f);  // settled long before kCalmFrames
+        for (std::uint32_t i = 0; i < kBlades; ++i) {
+            const gpu::BladeGpu& b = storm.blades[i];
+            for (int k = 0; k < 4; ++k)
+                ASSERT_TRUE(std::isfinite(b.v1_width[k]) && std::isfinite(b.v2_stiffness[k]) &&
+                            std::isfinite(storm.rests[i].restV2_eta[k]))
+                    << "blade " << i << " frame " << f;
+            const float h = b.v0_height.w;
+            const float height = glm::dot(glm::vec3(b.v2_stiffness) - glm::vec3(b.v0_height),
+                                          glm::vec3(b.up_direction));
+            worstBelowGround = std::max(worstBelowGround, -height / h);
+            if (storm.rests[i].restV2_eta.w > 0.f) ++collisions;
+            if (f % 10 == 0)
+                worstLengthError = std::max(worstLengthError, std::abs(exactLength(b) - h) / h);
+        }
+    }
+    EXPECT_LE(worstBelowGround, 1e-6f) << "v2 went below the local ground plane (fraction of h)";
+    EXPECT_LT(worstLengthError, 0.01f) << "curve length left 1 % of the height";
+    EXPECT_GT(collisions, kStormFrames) << "the spheres never touched the meadow";
+    std::cout << "worst length error " << worstLengthError * 100.f << " %, worst below ground "
+              << worstBelowGround << " h\n";
+
+    const testing::TestMeadow settled = calm;
+    for (std::uint32_t f = kStormFrames; f < kStormFrames + kCalmFrames; ++f) {
+        step(storm, still, f);
+        step(calm, still, f);
+    }
+    for (std::uint32_t i = 0; i < kBlades; ++i)
+        ASSERT_LT(glm::distance(glm::vec3(calm.blades[i].v2_stiffness),
+                                glm::vec3(settled.blades[i].v2_stiffness)),
+                  1e-6f)
+            << "blade " << i << ": the gravity-only pose is not an equilibrium";
+    float worstRecovery = 0.f;
+    for (std::uint32_t i = 0; i < kBlades; ++i) {
+        const float h = storm.blades[i].v0_height.w;
+        EXPECT_EQ(storm.rests[i].restV2_eta.w, 0.f) << "blade " << i;
+        worstRecovery =
+            std::max(worstRecovery, glm::distance(glm::vec3(storm.blades[i].v2_stiffness),
+                                                  glm::vec3(calm.blades[i].v2_stiffness)) /
+                                        h);
+    }
+    EXPECT_LT(worstRecovery, 1e-3f) << "a blade did not come back to its pose under gravity alone";
+}
+
+TEST(PhysicsReference, RejectsSpansShorterThanTheCounts) {
+    testing::TestMeadow m = makeTestMeadow(4, 5);
+    const auto params = packPhysicsParams(PhysicsSettings{}, kDt_s, 0.f, 8, 0);
+    EXPECT_THROW(physicsStepReference(m.blades, m.rests, {}, params), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace meadow::runtime
