@@ -47,12 +47,13 @@ std::string toString(ReferencePoint);
 
 struct SegmenterParams {
     // --- Depth band (Sec. 4.1). nearDepth_m < farDepth_m sets the band; both 0 = automatic:
-    // the nearest histogram mode holding >= minModeFraction of the valid pixels, widened to
-    // the histogram valleys on both sides.
+    // the nearest histogram mode holding >= minModeFraction of the valid pixels (and at least
+    // minRegionArea_px), widened to the histogram valleys on both sides. The fraction is small
+    // because a back wall can hold 30x the tuft's pixels.
     float nearDepth_m = 0.0f;
     float farDepth_m = 0.0f;
     float histogramBin_m = 0.01f;
-    float minModeFraction = 0.05f;
+    float minModeFraction = 0.01f;
     float maxBandHalfWidth_m = 0.5f;  // the automatic band never spans more than this each side
 
     // --- Ground / background plane removal.

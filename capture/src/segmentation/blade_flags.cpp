@@ -1,0 +1,171 @@
+// Flags with reasons: what the segmentation cannot vouch for. Nothing is silently dropped or
+// silently trusted; each flag carries one human-readable line.
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <opencv2/imgproc.hpp>
+#include <sstream>
+
+#include "segmentation/stages.h"
+
+namespace meadow::capture {
+
+std::string toString(BladeFlag flag) {
+    switch (flag) {
+        case BladeFlag::Overlapping:
+            return "overlapping";
+        case BladeFlag::CurlsSideways:
+            return "curls-sideways";
+        case BladeFlag::TooThin:
+            return "too-thin";
+        case BladeFlag::BaseHidden:
+            return "base-hidden";
+        case BladeFlag::Asymmetric:
+            return "asymmetric";
+        case BladeFlag::Truncated:
+            return "truncated";
+    }
+    return "unknown";
+}
+
+namespace segmentation {
+
+namespace {
+constexpr int kSpineSamples = 16;  // centre-line samples for the curl test
+constexpr float kRadToDeg = 180.0f / std::numbers::pi_v<float>;
+constexpr int kHoleNeighbourhood_px = 2;  // a blade this close to an enclosed gap crosses it
+constexpr size_t kMinBladesForWidthMedian = 3;
+
+std::string fixed(double v, int digits = 1) {
+    std::ostringstream s;
+    s.setf(std::ios::fixed);
+    s.precision(digits);
+    s << v;
+    return s.str();
+}
+
+// Points at equal arc-length steps along an open polyline.
+std::vector<cv::Point2f> resample(const std::vector<cv::Point2f>& line, int count) {
+    std::vector<float> arc(line.size(), 0.f);
+    for (size_t i = 1; i < line.size(); ++i)
+        arc[i] = arc[i - 1] + static_cast<float>(cv::norm(line[i] - line[i - 1]));
+    std::vector<cv::Point2f> out;
+    const float total = arc.back();
+    size_t j = 0;
+    for (int k = 0; k < count; ++k) {
+        const float s = total * static_cast<float>(k) / static_cast<float>(count - 1);
+        while (j + 1 < line.size() && arc[j + 1] < s) ++j;
+        if (j + 1 >= line.size()) {
+            out.push_back(line.back());
+            continue;
+        }
+        const float seg = arc[j + 1] - arc[j];
+        const float t = seg > 0.f ? (s - arc[j]) / seg : 0.f;
+        out.push_back(line[j] + t * (line[j + 1] - line[j]));
+    }
+    return out;
+}
+
+// Centre line: side A (start -> tip) and side B (end -> tip) resampled and averaged.
+std::vector<cv::Point2f> centreLine(const BladeContour& blade) {
+    const auto& c = blade.contour_px;
+    if (c.size() < 4 || blade.tipIndex <= 0 || blade.tipIndex >= static_cast<int>(c.size()) - 1)
+        return {};
+    std::vector<cv::Point2f> a(c.begin(), c.begin() + blade.tipIndex + 1);
+    std::vector<cv::Point2f> b(c.rbegin(),
+                               c.rbegin() + static_cast<std::ptrdiff_t>(c.size()) - blade.tipIndex);
+    const auto ra = resample(a, kSpineSamples), rb = resample(b, kSpineSamples);
+    std::vector<cv::Point2f> mid(static_cast<size_t>(kSpineSamples));
+    for (size_t i = 0; i < mid.size(); ++i) mid[i] = 0.5f * (ra[i] + rb[i]);
+    return mid;
+}
+
+float totalTurn_deg(const std::vector<cv::Point2f>& line) {
+    float turn = 0.f;
+    for (size_t i = 2; i < line.size(); ++i) {
+        const cv::Point2f u = line[i - 1] - line[i - 2], v = line[i] - line[i - 1];
+        if (cv::norm(u) < 1e-3 || cv::norm(v) < 1e-3) continue;
+        turn += std::abs(std::atan2(u.x * v.y - u.y * v.x, u.dot(v)));
+    }
+    return turn * kRadToDeg;
+}
+}  // namespace
+
+void addFlag(BladeContour& blade, BladeFlag flag, std::string reason) {
+    if (std::find(blade.flags.begin(), blade.flags.end(), flag) != blade.flags.end()) return;
+    blade.flags.push_back(flag);
+    blade.reasons.push_back(toString(flag) + ": " + std::move(reason));
+}
+void addFlag(BladeCluster& cluster, BladeFlag flag, std::string reason) {
+    cluster.flags.push_back(flag);
+    cluster.reasons.push_back(toString(flag) + ": " + std::move(reason));
+}
+
+void flagBlades(std::span<BladeContour> blades, const BladeCluster& cluster, cv::Size frameSize,
+                const SegmenterParams& params) {
+    std::vector<float> widths;
+    // Enclosed gaps of the cluster (holes the clean-up kept): the blades around them cross.
+    cv::Mat1b holes(frameSize, std::uint8_t{0});
+    const bool hasHoles = std::find(cluster.flags.begin(), cluster.flags.end(),
+                                    BladeFlag::Overlapping) != cluster.flags.end();
+    if (hasHoles) {
+        cv::drawContours(holes, std::vector<std::vector<cv::Point>>{cluster.contour_px}, 0, 255,
+                         cv::FILLED);
+        cv::Mat1b any(frameSize, std::uint8_t{0});
+        for (const auto& b : blades) any |= b.mask;
+        holes &= ~any;
+        cv::dilate(holes, holes, cv::Mat(), {-1, -1}, kHoleNeighbourhood_px);
+    }
+    for (auto& blade : blades) {
+        // Truncated: the contour runs along the image border.
+        const auto onBorder =
+            std::count_if(blade.contour_px.begin(), blade.contour_px.end(), [&](cv::Point p) {
+                return p.x == 0 || p.y == 0 || p.x == frameSize.width - 1 ||
+                       p.y == frameSize.height - 1;
+            });
+        if (onBorder > 0)
+            addFlag(
+                blade, BladeFlag::Truncated,
+                std::to_string(onBorder) +
+                    " contour px on the image border: the blade may continue outside the frame");
+        // Width = area / centre-line length.
+        const auto mid = centreLine(blade);
+        double length = 0.0;
+        for (size_t i = 1; i < mid.size(); ++i) length += cv::norm(mid[i] - mid[i - 1]);
+        const double area = cv::countNonZero(blade.mask);
+        const double width = length > 0.0 ? area / length : 0.0;
+        widths.push_back(static_cast<float>(width));
+        if (width < params.minResolvableWidth_px)
+            addFlag(blade, BladeFlag::TooThin,
+                    "mean width " + fixed(width) + " px < " + fixed(params.minResolvableWidth_px) +
+                        " px: narrower than the sensor resolves; widths are unreliable");
+        const float turn = totalTurn_deg(mid);
+        if (turn > params.curlTurn_deg)
+            addFlag(blade, BladeFlag::CurlsSideways,
+                    "centre line turns " + fixed(turn, 0) + " deg (> " +
+                        fixed(params.curlTurn_deg, 0) +
+                        "): the blade curls or folds; the symmetric match may pair wrong points");
+        if (hasHoles && cv::countNonZero(blade.mask & holes) > 0)
+            addFlag(blade, BladeFlag::Overlapping,
+                    "the blade borders a gap enclosed by blades: it crosses another blade");
+        for (size_t k = 0; k < cluster.flags.size(); ++k)
+            if (cluster.flags[k] == BladeFlag::BaseHidden)
+                addFlag(blade, BladeFlag::BaseHidden, "its cluster's " + cluster.reasons[k]);
+    }
+    if (blades.size() >= kMinBladesForWidthMedian) {
+        std::vector<float> sorted = widths;
+        std::nth_element(sorted.begin(),
+                         sorted.begin() + static_cast<std::ptrdiff_t>(sorted.size() / 2),
+                         sorted.end());
+        const float median = sorted[sorted.size() / 2];
+        for (size_t i = 0; i < blades.size(); ++i)
+            if (median > 0.f && widths[i] > params.overlapWidthRatio * median)
+                addFlag(blades[i], BladeFlag::Overlapping,
+                        "mean width " + fixed(widths[i]) + " px is " + fixed(widths[i] / median) +
+                            "x the cluster's median: probably several blades the contour could not "
+                            "part");
+    }
+}
+
+}  // namespace segmentation
+}  // namespace meadow::capture

@@ -1,0 +1,201 @@
+// Partition of a cluster's contour into single blades (Fan & Sheng 2017, Sec. 4.2): the
+// distance of each contour point to the reference point rises along a blade to its tip and
+// falls back to a local minimum where two blades part. The paper cuts at local minima; raw
+// minima of a pixel contour are mostly staircase noise, so only minima whose topological
+// persistence (depth below the lower of their two bounding maxima) is large are cuts.
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numeric>
+#include <opencv2/imgproc.hpp>
+
+#include "segmentation/stages.h"
+
+namespace meadow::capture::segmentation {
+
+namespace {
+constexpr float kGaussianSupport_sigmas = 3.0f;
+
+int wrap(int i, int n) { return ((i % n) + n) % n; }
+}  // namespace
+
+std::vector<float> smoothCircular(std::span<const float> signal, float sigma_samples) {
+    const int n = static_cast<int>(signal.size());
+    if (sigma_samples <= 0.f || n < 3) return {signal.begin(), signal.end()};
+    const int half =
+        std::min(n / 2, static_cast<int>(std::ceil(kGaussianSupport_sigmas * sigma_samples)));
+    std::vector<float> kernel(static_cast<size_t>(2 * half + 1));
+    float sum = 0.f;
+    for (int k = -half; k <= half; ++k) {
+        const float w =
+            std::exp(-0.5f * static_cast<float>(k * k) / (sigma_samples * sigma_samples));
+        kernel[static_cast<size_t>(k + half)] = w;
+        sum += w;
+    }
+    std::vector<float> out(signal.size(), 0.f);
+    for (int i = 0; i < n; ++i) {
+        float acc = 0.f;
+        for (int k = -half; k <= half; ++k)
+            acc +=
+                kernel[static_cast<size_t>(k + half)] * signal[static_cast<size_t>(wrap(i + k, n))];
+        out[static_cast<size_t>(i)] = acc / sum;
+    }
+    return out;
+}
+
+// Sublevel-set persistence on a cycle: samples are added from low to high; a sample with no
+// active neighbour starts a component (a minimum is born); a sample joining two components
+// kills the younger one (higher birth value) with persistence = value - birth (elder rule).
+std::vector<std::pair<int, float>> circularMinimaPersistence(std::span<const float> signal) {
+    const int n = static_cast<int>(signal.size());
+    std::vector<std::pair<int, float>> result;
+    if (n == 0) return result;
+    std::vector<int> order(static_cast<size_t>(n));
+    std::iota(order.begin(), order.end(), 0);
+    std::stable_sort(order.begin(), order.end(), [&](int a, int b) {
+        return signal[static_cast<size_t>(a)] < signal[static_cast<size_t>(b)];
+    });
+    std::vector<int> parent(static_cast<size_t>(n), -1);  // -1 = not yet active
+    std::vector<int> birthIndex(static_cast<size_t>(n), -1);
+    const auto find = [&](int i) {
+        while (parent[static_cast<size_t>(i)] != i) {
+            parent[static_cast<size_t>(i)] =
+                parent[static_cast<size_t>(parent[static_cast<size_t>(i)])];
+            i = parent[static_cast<size_t>(i)];
+        }
+        return i;
+    };
+    const auto birth = [&](int root) {
+        return signal[static_cast<size_t>(birthIndex[static_cast<size_t>(root)])];
+    };
+    for (int i : order) {
+        parent[static_cast<size_t>(i)] = i;
+        birthIndex[static_cast<size_t>(i)] = i;
+        bool joined = false;
+        for (int j : {wrap(i - 1, n), wrap(i + 1, n)}) {
+            if (j == i || parent[static_cast<size_t>(j)] < 0) continue;
+            const int ri = find(i), rj = find(j);
+            if (ri == rj) continue;
+            if (!joined) {  // i joins its first neighbour's component: no new minimum
+                parent[static_cast<size_t>(ri)] = rj;
+                joined = true;
+                continue;
+            }
+            // i bridges two components: the younger minimum dies here.
+            const int young = birth(ri) > birth(rj) || (birth(ri) == birth(rj) &&
+                                                        birthIndex[static_cast<size_t>(ri)] >
+                                                            birthIndex[static_cast<size_t>(rj)])
+                                  ? ri
+                                  : rj;
+            const int old = young == ri ? rj : ri;
+            result.emplace_back(birthIndex[static_cast<size_t>(young)],
+                                signal[static_cast<size_t>(i)] - birth(young));
+            parent[static_cast<size_t>(young)] = old;
+        }
+        if (!joined) {
+            // A new component born at i (a local minimum); nothing to record yet.
+        }
+    }
+    result.emplace_back(birthIndex[static_cast<size_t>(find(order.front()))],
+                        std::numeric_limits<float>::infinity());
+    std::sort(result.begin(), result.end());
+    // Drop zero-persistence entries (plateau samples joining at their own level).
+    std::erase_if(result, [](const auto& r) { return r.second <= 0.f; });
+    return result;
+}
+
+std::vector<BladeContour> partitionCluster(BladeCluster& cluster, const cv::Mat1b& mask,
+                                           const SegmenterParams& params, int firstId,
+                                           StageReport& report) {
+    const auto& contour = cluster.contour_px;
+    const int n = static_cast<int>(contour.size());
+    std::vector<float> raw(static_cast<size_t>(n));
+    for (int i = 0; i < n; ++i)
+        raw[static_cast<size_t>(i)] = static_cast<float>(
+            cv::norm(cv::Point2f(contour[static_cast<size_t>(i)]) - cluster.reference_px));
+    cluster.distance_px = smoothCircular(raw, params.smoothingSigma_px);
+    const auto& d = cluster.distance_px;
+    const float maxDistance = *std::max_element(d.begin(), d.end());
+    const float threshold =
+        std::max(params.minPersistence_px, params.minPersistenceFraction * maxDistance);
+
+    auto minima = circularMinimaPersistence(d);
+    int weak = 0;
+    std::vector<std::pair<int, float>> cuts;
+    for (const auto& m : minima) {
+        if (m.second >= threshold)
+            cuts.push_back(m);
+        else
+            ++weak;
+    }
+    // Pieces too short to be a blade merge into a neighbour: drop the weaker of their two cuts.
+    int merged = 0;
+    for (bool changed = true; changed && cuts.size() > 1;) {
+        changed = false;
+        for (size_t k = 0; k < cuts.size(); ++k) {
+            const size_t next = (k + 1) % cuts.size();
+            const int length = wrap(cuts[next].first - cuts[k].first, n);
+            if (length >= params.minBladeContour_px) continue;
+            cuts.erase(cuts.begin() +
+                       static_cast<std::ptrdiff_t>(cuts[k].second < cuts[next].second ? k : next));
+            ++merged;
+            changed = true;
+            break;
+        }
+    }
+    report.notes.push_back(
+        "cluster of " + std::to_string(cluster.area_px) + " px: " + std::to_string(cuts.size()) +
+        " cut(s) at persistence >= " + std::to_string(threshold) + " px; " + std::to_string(weak) +
+        " shallow minima ignored, " + std::to_string(merged) +
+        " piece(s) shorter than minBladeContour_px merged");
+    cluster.cutIndices.clear();
+    for (const auto& c : cuts) cluster.cutIndices.push_back(c.first);
+
+    // The cluster's own pixels: wedges are clipped to them.
+    const cv::Rect box = cv::boundingRect(contour);
+    cv::Mat1b region(mask.size(), std::uint8_t{0});
+    cv::drawContours(region, std::vector<std::vector<cv::Point>>{contour}, 0, 255, cv::FILLED);
+    region &= mask;
+
+    std::vector<BladeContour> blades;
+    const cv::Point reference(cvRound(cluster.reference_px.x), cvRound(cluster.reference_px.y));
+    int empty = 0;
+    for (size_t k = 0; k < cuts.size(); ++k) {
+        const int start = cuts[k].first;
+        const int length =
+            cuts.size() == 1 ? n : wrap(cuts[(k + 1) % cuts.size()].first - start, n);
+        BladeContour blade;
+        blade.contour_px.reserve(static_cast<size_t>(length) + 1);
+        float best = -1.f;
+        for (int s = 0; s <= length && s < n + 1; ++s) {
+            const int i = wrap(start + s, n);
+            if (s == n) break;  // one cut: the whole contour once
+            blade.contour_px.push_back(contour[static_cast<size_t>(i)]);
+            if (d[static_cast<size_t>(i)] > best) {
+                best = d[static_cast<size_t>(i)];
+                blade.tipIndex = s;
+            }
+        }
+        // Mask: the wedge between the blade's contour and the reference point, within the
+        // cluster. The reference closes the polygon so a blade keeps its part of the shared base.
+        std::vector<cv::Point> polygon = blade.contour_px;
+        polygon.push_back(reference);
+        blade.mask = cv::Mat1b::zeros(mask.size());
+        cv::fillPoly(blade.mask, std::vector<std::vector<cv::Point>>{polygon}, 255);
+        cv::polylines(blade.mask, std::vector<std::vector<cv::Point>>{blade.contour_px}, false,
+                      255);
+        blade.mask &= region;
+        if (cv::countNonZero(blade.mask(box)) == 0) {
+            ++empty;
+            continue;
+        }
+        blade.id = firstId + static_cast<int>(blades.size());
+        blades.push_back(std::move(blade));
+    }
+    if (empty > 0)
+        report.notes.push_back(std::to_string(empty) +
+                               " contour piece(s) enclose no pixels: dropped");
+    return blades;
+}
+
+}  // namespace meadow::capture::segmentation

@@ -1,0 +1,96 @@
+// Debug overlay in the manner of Fan & Sheng 2017, Fig. 4: depth in grey, the cluster mask
+// tinted, every blade in its own colour, contours, centre and base point, cut points.
+#include <cmath>
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
+
+#include "meadow/capture/atomic_file.h"
+#include "meadow/capture/error.h"
+#include "segmentation/stages.h"
+
+namespace meadow::capture {
+
+namespace {
+constexpr double kGoldenRatioConjugate = 0.618033988749895;  // well-spread hues, blade to blade
+constexpr double kBladeAlpha = 0.6;
+constexpr int kMarker_px = 9;
+
+cv::Vec3b bladeColour(int id) {
+    const double hue = std::fmod(static_cast<double>(id) * kGoldenRatioConjugate, 1.0) * 180.0;
+    cv::Mat3b hsv(1, 1, cv::Vec3b(static_cast<uchar>(hue), 220, 255)), bgr;
+    cv::cvtColor(hsv, bgr, cv::COLOR_HSV2BGR);
+    return bgr(0, 0);
+}
+}  // namespace
+
+cv::Mat3b renderDebugOverlay(const DepthFrame& frame, const Segmentation& s) {
+    cv::Mat1b grey(frame.depth_mm.size(), std::uint8_t{0});
+    if (!frame.depth_mm.empty()) {
+        double lo = 0, hi = 0;
+        cv::minMaxLoc(frame.depth_mm, &lo, &hi, nullptr, nullptr, frame.depth_mm > 0);
+        if (hi > lo) {
+            // Near = bright: invert depth into [40, 255]; no reading = black.
+            cv::Mat1f f;
+            frame.depth_mm.convertTo(f, CV_32F);
+            cv::Mat1f g = 255.0 - (f - lo) * (215.0 / (hi - lo));
+            g.convertTo(grey, CV_8U);
+            grey.setTo(0, frame.depth_mm == 0);
+        }
+    } else if (!s.clusterMask.empty()) {
+        grey = cv::Mat1b(s.clusterMask.size(), std::uint8_t{0});
+    }
+    cv::Mat3b out;
+    cv::cvtColor(grey, out, cv::COLOR_GRAY2BGR);
+    if (!s.clusterMask.empty() && s.clusterMask.size() == out.size())
+        out.setTo(cv::Scalar(90, 60, 60), s.clusterMask);  // mask not given to any blade: slate
+    for (const auto& b : s.blades) {
+        if (b.mask.size() != out.size()) continue;
+        const cv::Vec3b c = bladeColour(b.id);
+        for (int y = 0; y < out.rows; ++y)
+            for (int x = 0; x < out.cols; ++x)
+                if (b.mask(y, x))
+                    for (int ch = 0; ch < 3; ++ch)
+                        out(y, x)[ch] = cv::saturate_cast<uchar>(kBladeAlpha * c[ch] +
+                                                                 (1 - kBladeAlpha) * out(y, x)[ch]);
+    }
+    for (const auto& b : s.blades) {
+        const cv::Vec3b c = bladeColour(b.id);
+        cv::polylines(out, std::vector<std::vector<cv::Point>>{b.contour_px}, false, cv::Scalar(c),
+                      1);
+        if (!b.contour_px.empty())
+            cv::circle(out, b.contour_px[static_cast<size_t>(b.tipIndex)], 3,
+                       cv::Scalar(255, 255, 255), 1);
+        if (!b.flags.empty() && !b.contour_px.empty())
+            cv::putText(out, "!", b.contour_px[static_cast<size_t>(b.tipIndex)] + cv::Point(4, -4),
+                        cv::FONT_HERSHEY_SIMPLEX, 0.5, cv::Scalar(0, 0, 255), 1);
+    }
+    for (const auto& c : s.clusters) {
+        cv::drawMarker(out, c.centre_px, cv::Scalar(0, 255, 255), cv::MARKER_CROSS, kMarker_px, 2);
+        cv::drawMarker(out, c.basePoint_px, cv::Scalar(255, 0, 255), cv::MARKER_DIAMOND, kMarker_px,
+                       2);
+        for (int i : c.cutIndices)
+            cv::drawMarker(out, c.contour_px[static_cast<size_t>(i)], cv::Scalar(0, 0, 255),
+                           cv::MARKER_TILTED_CROSS, kMarker_px, 2);
+    }
+    if (s.blades.empty() && !s.noBladesReason.empty())
+        cv::putText(out, "no blades: " + s.noBladesReason, {8, 20}, cv::FONT_HERSHEY_SIMPLEX, 0.45,
+                    cv::Scalar(0, 0, 255), 1);
+    return out;
+}
+
+void writeDebugOverlay(const std::filesystem::path& path, const DepthFrame& frame,
+                       const Segmentation& segmentation) {
+    const cv::Mat3b image = renderDebugOverlay(frame, segmentation);
+    std::vector<uchar> png;
+    if (image.empty() || !cv::imencode(".png", image, png))
+        throw CaptureError("writeDebugOverlay: cannot encode the overlay for " + path.string() +
+                           "; the frame is empty");
+    try {
+        writeFileAtomically(
+            path, std::string_view(reinterpret_cast<const char*>(png.data()), png.size()));
+    } catch (const Error& e) {
+        throw CaptureError(std::string("writeDebugOverlay: ") + e.what());
+    }
+}
+
+}  // namespace meadow::capture

@@ -1,0 +1,103 @@
+// Depth-band mask (Fan & Sheng 2017, Sec. 4.1): the tuft is the part of the frame inside a band
+// of depths. The user may give the band; otherwise it is the nearest dominant mode of the depth
+// histogram, widened to the histogram's valleys on both sides.
+#include <algorithm>
+#include <cmath>
+#include <opencv2/core.hpp>
+#include <sstream>
+
+#include "segmentation/stages.h"
+
+namespace meadow::capture::segmentation {
+
+namespace {
+// Histogram smoothing half-width in bins: a [1 2 3 2 1] kernel, enough to merge the comb that
+// disparity quantisation leaves in the histogram of a structured-light sensor.
+constexpr int kSmoothHalfWidth_bins = 2;
+constexpr float kMaxHistogramDepth_m = 12.0f;
+
+std::string metres(float v) {
+    std::ostringstream s;
+    s.precision(3);
+    s << v << " m";
+    return s.str();
+}
+}  // namespace
+
+DepthBand automaticDepthBand(const cv::Mat1w& depth_mm, const cv::Mat1b& mask,
+                             const SegmenterParams& params, StageReport& report) {
+    const float bin_mm = params.histogramBin_m * kMillimetresPerMetre;
+    const int bins = static_cast<int>(kMaxHistogramDepth_m * kMillimetresPerMetre / bin_mm) + 1;
+    std::vector<double> hist(static_cast<size_t>(bins), 0.0);
+    double total = 0.0;
+    for (int y = 0; y < depth_mm.rows; ++y) {
+        const auto* d = depth_mm[y];
+        const auto* m = mask[y];
+        for (int x = 0; x < depth_mm.cols; ++x)
+            if (d[x] != 0 && m[x] != 0) {
+                const int b =
+                    std::min(bins - 1, static_cast<int>(static_cast<float>(d[x]) / bin_mm));
+                hist[static_cast<size_t>(b)] += 1.0;
+                total += 1.0;
+            }
+    }
+    if (total == 0.0) {
+        report.notes.push_back("no valid depth left to histogram");
+        return {};
+    }
+    std::vector<double> smooth(hist.size(), 0.0);
+    for (int i = 0; i < bins; ++i)
+        for (int k = -kSmoothHalfWidth_bins; k <= kSmoothHalfWidth_bins; ++k) {
+            const int j = i + k;
+            if (j >= 0 && j < bins)
+                smooth[static_cast<size_t>(i)] +=
+                    hist[static_cast<size_t>(j)] * (kSmoothHalfWidth_bins + 1 - std::abs(k));
+        }
+    const auto at = [&](int i) { return smooth[static_cast<size_t>(i)]; };
+    const int maxHalf_bins =
+        std::max(1, static_cast<int>(params.maxBandHalfWidth_m / params.histogramBin_m));
+    // Modes from near to far; the first whose mass between its valleys is large enough wins.
+    for (int peak = 0; peak < bins; ++peak) {
+        if (at(peak) <= 0.0) continue;
+        const bool isPeak = (peak == 0 || at(peak - 1) < at(peak)) &&
+                            (peak == bins - 1 || at(peak + 1) <= at(peak));
+        if (!isPeak) continue;
+        int lo = peak, hi = peak;
+        while (lo > 0 && peak - lo < maxHalf_bins && at(lo - 1) > 0.0 && at(lo - 1) <= at(lo)) --lo;
+        while (hi < bins - 1 && hi - peak < maxHalf_bins && at(hi + 1) > 0.0 &&
+               at(hi + 1) <= at(hi))
+            ++hi;
+        double mass = 0.0;
+        for (int i = lo; i <= hi; ++i) mass += hist[static_cast<size_t>(i)];
+        if (mass < params.minModeFraction * total || mass < params.minRegionArea_px) {
+            peak = hi;  // the whole mode is too small; continue beyond it
+            continue;
+        }
+        DepthBand band;
+        band.near_m = static_cast<float>(lo) * params.histogramBin_m;
+        band.far_m = static_cast<float>(hi + 1) * params.histogramBin_m;
+        band.found = true;
+        report.notes.push_back("automatic band [" + metres(band.near_m) + ", " +
+                               metres(band.far_m) + "]: nearest mode at " +
+                               metres((static_cast<float>(peak) + 0.5f) * params.histogramBin_m) +
+                               " holds " + std::to_string(static_cast<int>(100.0 * mass / total)) +
+                               " % of the valid pixels");
+        return band;
+    }
+    report.notes.push_back("no depth mode holds " +
+                           std::to_string(static_cast<int>(100.f * params.minModeFraction)) +
+                           " % of the valid pixels");
+    return {};
+}
+
+cv::Mat1b depthBandMask(const cv::Mat1w& depth_mm, DepthBand band, StageReport& report) {
+    const double near_mm = std::floor(band.near_m * kMillimetresPerMetre);
+    const double far_mm = std::ceil(band.far_m * kMillimetresPerMetre);
+    cv::Mat1b mask;
+    cv::inRange(depth_mm, cv::Scalar(std::max(1.0, near_mm)), cv::Scalar(far_mm), mask);
+    report.notes.push_back("band " + metres(band.near_m) + " .. " + metres(band.far_m) + " keeps " +
+                           std::to_string(cv::countNonZero(mask)) + " px");
+    return mask;
+}
+
+}  // namespace meadow::capture::segmentation

@@ -1,0 +1,212 @@
+// Ground and background removal with PCL: fit large planes to the masked points and clear the
+// pixels within planeDistance_m of them. Two fitters, selectable:
+//  - Ransac: pcl::SACSegmentation with SACMODEL_PARALLEL_PLANE around the optical axis, so only
+//    planes seen at an angle (ground, table) can win; a tuft seen from the side is itself nearly
+//    a plane facing the camera and must never be removed.
+//  - OrganizedMultiPlane: integral-image normals + pcl::OrganizedMultiPlaneSegmentation, then
+//    the same obliquity test on each plane found.
+// Both fit on a strided sample and then test every masked pixel against the plane equation,
+// which is cheaper than fitting on all pixels and gives the same inliers.
+// This is one of the two files that include PCL (the other is outlier_removal.cpp).
+#include <pcl/ModelCoefficients.h>
+#include <pcl/features/integral_image_normal.h>
+#include <pcl/point_cloud.h>
+#include <pcl/point_types.h>
+#include <pcl/sample_consensus/method_types.h>
+#include <pcl/sample_consensus/model_types.h>
+#include <pcl/segmentation/organized_multi_plane_segmentation.h>
+#include <pcl/segmentation/sac_segmentation.h>
+
+#include <cmath>
+#include <numbers>
+#include <opencv2/core.hpp>
+#include <sstream>
+
+#include "segmentation/stages.h"
+
+namespace meadow::capture::segmentation {
+
+namespace {
+
+constexpr float kDegToRad = std::numbers::pi_v<float> / 180.0f;
+// OrganizedMultiPlaneSegmentation: normals of one plane may differ by this much (PCL default
+// is 3 deg; sensor noise at 1-2 m needs more), and neighbouring depths by this factor of depth.
+constexpr float kOmpsAngularThreshold_deg = 5.0f;
+constexpr float kNormalMaxDepthChangeFactor = 0.02f;
+constexpr float kNormalSmoothingSize_px = 10.0f;
+constexpr int kRansacSeed = 12345;  // deterministic results run to run
+
+struct Plane {
+    Eigen::Vector4f coefficients;  // n.x + d = 0, |n| = 1
+};
+
+float obliquity_deg(const Eigen::Vector3f& n) {
+    // Angle between the plane's normal and the optical axis: 0 = facing the camera squarely.
+    return std::acos(std::min(1.0f, std::abs(n.z()) / n.norm())) / kDegToRad;
+}
+
+pcl::PointCloud<pcl::PointXYZ>::Ptr sampleCloud(const cv::Mat1w& depth_mm, const Intrinsics& K,
+                                                const cv::Mat1b& mask, int stride, bool organized) {
+    auto cloud = std::make_shared<pcl::PointCloud<pcl::PointXYZ>>();
+    const int w = (depth_mm.cols + stride - 1) / stride, h = (depth_mm.rows + stride - 1) / stride;
+    if (organized) {
+        cloud->width = static_cast<std::uint32_t>(w);
+        cloud->height = static_cast<std::uint32_t>(h);
+        cloud->is_dense = false;
+        cloud->points.resize(static_cast<size_t>(w) * static_cast<size_t>(h));
+    }
+    const float nan = std::numeric_limits<float>::quiet_NaN();
+    for (int y = 0, sy = 0; y < depth_mm.rows; y += stride, ++sy)
+        for (int x = 0, sx = 0; x < depth_mm.cols; x += stride, ++sx) {
+            const auto d = depth_mm(y, x);
+            pcl::PointXYZ p(nan, nan, nan);
+            if (d != 0 && mask(y, x) != 0) {
+                const auto v = K.backProject(static_cast<float>(x), static_cast<float>(y),
+                                             static_cast<float>(d) / kMillimetresPerMetre);
+                p = pcl::PointXYZ(v.x, v.y, v.z);
+            } else if (!organized) {
+                continue;
+            }
+            if (organized)
+                (*cloud)(static_cast<std::uint32_t>(sx), static_cast<std::uint32_t>(sy)) = p;
+            else
+                cloud->push_back(p);
+        }
+    return cloud;
+}
+
+// Clears the mask pixels within tolerance of the plane; returns how many.
+int clearPlane(const cv::Mat1w& depth_mm, const Intrinsics& K, const Plane& plane,
+               float tolerance_m, cv::Mat1b& mask) {
+    const Eigen::Vector4f& c = plane.coefficients;
+    int cleared = 0;
+    for (int y = 0; y < depth_mm.rows; ++y) {
+        auto* m = mask[y];
+        const auto* d = depth_mm[y];
+        for (int x = 0; x < depth_mm.cols; ++x) {
+            if (m[x] == 0 || d[x] == 0) continue;
+            const auto v = K.backProject(static_cast<float>(x), static_cast<float>(y),
+                                         static_cast<float>(d[x]) / kMillimetresPerMetre);
+            if (std::abs(c[0] * v.x + c[1] * v.y + c[2] * v.z + c[3]) <= tolerance_m) {
+                m[x] = 0;
+                ++cleared;
+            }
+        }
+    }
+    return cleared;
+}
+
+std::vector<Plane> ransacPlanes(const cv::Mat1w& depth_mm, const Intrinsics& K,
+                                const SegmenterParams& params, cv::Mat1b mask,
+                                std::vector<std::string>& notes) {
+    std::vector<Plane> planes;
+    const int stride = params.planeSampleStride_px;
+    for (int p = 0; p < params.maxPlanes; ++p) {
+        auto cloud = sampleCloud(depth_mm, K, mask, stride, /*organized=*/false);
+        const auto minInliers =
+            static_cast<size_t>(params.minPlaneFraction * static_cast<float>(cloud->size()));
+        if (cloud->size() < 3) break;
+        pcl::SACSegmentation<pcl::PointXYZ> sac;
+        sac.setOptimizeCoefficients(true);
+        sac.setModelType(pcl::SACMODEL_PARALLEL_PLANE);
+        sac.setAxis(Eigen::Vector3f(0.f, 0.f, 1.f));
+        sac.setEpsAngle((90.0f - params.minPlaneObliquity_deg) * kDegToRad);
+        sac.setMethodType(pcl::SAC_RANSAC);
+        sac.setDistanceThreshold(params.planeDistance_m);
+        sac.setMaxIterations(params.ransacIterations);
+        sac.setInputCloud(cloud);
+        pcl::PointIndices inliers;
+        pcl::ModelCoefficients coefficients;
+        srand(kRansacSeed);  // PCL's RANSAC draws samples with rand()
+        sac.segment(inliers, coefficients);
+        if (coefficients.values.size() != 4 ||
+            inliers.indices.size() < std::max<size_t>(3, minInliers)) {
+            if (p == 0)
+                notes.push_back("no oblique plane holds " +
+                                std::to_string(static_cast<int>(100 * params.minPlaneFraction)) +
+                                " % of the masked points");
+            break;
+        }
+        Plane plane;
+        plane.coefficients = Eigen::Vector4f(coefficients.values[0], coefficients.values[1],
+                                             coefficients.values[2], coefficients.values[3]);
+        plane.coefficients /= plane.coefficients.head<3>().norm();
+        if (obliquity_deg(plane.coefficients.head<3>()) < params.minPlaneObliquity_deg) break;
+        planes.push_back(plane);
+        clearPlane(depth_mm, K, plane, params.planeDistance_m, mask);
+    }
+    return planes;
+}
+
+std::vector<Plane> organizedPlanes(const cv::Mat1w& depth_mm, const Intrinsics& K,
+                                   const SegmenterParams& params, const cv::Mat1b& mask,
+                                   std::vector<std::string>& notes) {
+    auto cloud = sampleCloud(depth_mm, K, mask, params.planeSampleStride_px, /*organized=*/true);
+    size_t valid = 0;
+    for (const auto& p : cloud->points) valid += std::isfinite(p.z) ? 1 : 0;
+    if (valid < 3) return {};
+    auto normals = std::make_shared<pcl::PointCloud<pcl::Normal>>();
+    pcl::IntegralImageNormalEstimation<pcl::PointXYZ, pcl::Normal> ne;
+    ne.setNormalEstimationMethod(ne.AVERAGE_3D_GRADIENT);
+    ne.setMaxDepthChangeFactor(kNormalMaxDepthChangeFactor);
+    ne.setNormalSmoothingSize(kNormalSmoothingSize_px /
+                              static_cast<float>(params.planeSampleStride_px));
+    ne.setInputCloud(cloud);
+    ne.compute(*normals);
+
+    pcl::OrganizedMultiPlaneSegmentation<pcl::PointXYZ, pcl::Normal, pcl::Label> mps;
+    mps.setMinInliers(static_cast<unsigned>(std::max<size_t>(
+        3, static_cast<size_t>(params.minPlaneFraction * static_cast<float>(valid)))));
+    mps.setAngularThreshold(kOmpsAngularThreshold_deg * kDegToRad);
+    mps.setDistanceThreshold(params.planeDistance_m);
+    mps.setInputNormals(normals);
+    mps.setInputCloud(cloud);
+    std::vector<pcl::PlanarRegion<pcl::PointXYZ>,
+                Eigen::aligned_allocator<pcl::PlanarRegion<pcl::PointXYZ>>>
+        regions;
+    mps.segment(regions);
+    std::vector<std::pair<size_t, Plane>> found;
+    for (const auto& r : regions) {
+        Plane plane;
+        plane.coefficients = r.getCoefficients();
+        plane.coefficients /= plane.coefficients.head<3>().norm();
+        if (obliquity_deg(plane.coefficients.head<3>()) < params.minPlaneObliquity_deg) {
+            notes.push_back("kept a plane facing the camera (" + std::to_string(r.getCount()) +
+                            " samples): not ground");
+            continue;
+        }
+        found.emplace_back(r.getCount(), plane);
+    }
+    std::sort(found.begin(), found.end(),
+              [](const auto& a, const auto& b) { return a.first > b.first; });
+    std::vector<Plane> planes;
+    for (size_t i = 0; i < found.size() && static_cast<int>(i) < params.maxPlanes; ++i)
+        planes.push_back(found[i].second);
+    if (planes.empty())
+        notes.push_back("no oblique plane holds " +
+                        std::to_string(static_cast<int>(100 * params.minPlaneFraction)) +
+                        " % of the masked points");
+    return planes;
+}
+
+}  // namespace
+
+void removePlanes(const cv::Mat1w& depth_mm, const Intrinsics& intrinsics,
+                  const SegmenterParams& params, cv::Mat1b& mask, StageReport& report) {
+    if (cv::countNonZero(mask) < 3) return;
+    const auto planes = params.planeMethod == PlaneMethod::Ransac
+                            ? ransacPlanes(depth_mm, intrinsics, params, mask.clone(), report.notes)
+                            : organizedPlanes(depth_mm, intrinsics, params, mask, report.notes);
+    for (const auto& plane : planes) {
+        const int cleared = clearPlane(depth_mm, intrinsics, plane, params.planeDistance_m, mask);
+        const auto& c = plane.coefficients;
+        std::ostringstream s;
+        s.precision(3);
+        s << toString(params.planeMethod) << " plane n=(" << c[0] << ", " << c[1] << ", " << c[2]
+          << ") d=" << c[3] << " m, " << obliquity_deg(c.head<3>())
+          << " deg from facing the camera: " << cleared << " px dropped as ground/background";
+        report.notes.push_back(s.str());
+    }
+}
+
+}  // namespace meadow::capture::segmentation

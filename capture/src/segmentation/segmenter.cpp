@@ -1,0 +1,309 @@
+// Segmenter: runs the stages of capture/src/segmentation/ in order and collects their reports.
+#include "meadow/capture/segmenter.h"
+
+#include <chrono>
+#include <cmath>
+#include <numeric>
+#include <opencv2/core.hpp>
+#include <sstream>
+
+#include "meadow/capture/error.h"
+#include "segmentation/stages.h"
+
+namespace meadow::capture {
+
+namespace seg = segmentation;
+
+std::string toString(PlaneMethod m) {
+    switch (m) {
+        case PlaneMethod::None:
+            return "none";
+        case PlaneMethod::Ransac:
+            return "ransac";
+        case PlaneMethod::OrganizedMultiPlane:
+            return "organized-multi-plane";
+    }
+    return "unknown";
+}
+std::string toString(OutlierMethod m) {
+    switch (m) {
+        case OutlierMethod::None:
+            return "none";
+        case OutlierMethod::OrganizedNeighbourhood:
+            return "organized-neighbourhood";
+        case OutlierMethod::Statistical:
+            return "statistical";
+    }
+    return "unknown";
+}
+std::string toString(ReferencePoint r) {
+    switch (r) {
+        case ReferencePoint::ContourCentre:
+            return "contour-centre";
+        case ReferencePoint::BasePoint:
+            return "base-point";
+    }
+    return "unknown";
+}
+
+namespace {
+// Sanity limits for parameters: beyond them a value is a typo, not a choice.
+constexpr float kMaxDepth_m = 20.0f;
+constexpr int kMaxKernel_px = 101;
+constexpr int kMaxIterations = 100000;
+
+std::string mustBe(const char* name, const std::string& what, double value) {
+    std::ostringstream s;
+    s << "SegmenterParams::" << name << " must be " << what << ", got " << value;
+    return s.str();
+}
+}  // namespace
+
+std::string SegmenterParams::problem() const {
+    const struct {
+        const char* name;
+        float value;
+        float lo, hi;
+    } ranges[] = {
+        {"nearDepth_m", nearDepth_m, 0.f, kMaxDepth_m},
+        {"farDepth_m", farDepth_m, 0.f, kMaxDepth_m},
+        {"histogramBin_m", histogramBin_m, 1e-4f, 1.f},
+        {"minModeFraction", minModeFraction, 0.f, 1.f},
+        {"maxBandHalfWidth_m", maxBandHalfWidth_m, 1e-3f, kMaxDepth_m},
+        {"planeDistance_m", planeDistance_m, 1e-4f, 1.f},
+        {"minPlaneFraction", minPlaneFraction, 0.f, 1.f},
+        {"minPlaneObliquity_deg", minPlaneObliquity_deg, 0.f, 90.f},
+        {"outlierDepthTolerance_m", outlierDepthTolerance_m, 1e-4f, 1.f},
+        {"statisticalStddevMul", statisticalStddevMul, 0.f, 100.f},
+        {"minValidFrameFraction", minValidFrameFraction, 0.f, 1.f},
+        {"baseBandFraction", baseBandFraction, 0.f, 1.f},
+        {"smoothingSigma_px", smoothingSigma_px, 0.f, 1000.f},
+        {"minPersistence_px", minPersistence_px, 0.f, 1e5f},
+        {"minPersistenceFraction", minPersistenceFraction, 0.f, 1.f},
+        {"minResolvableWidth_px", minResolvableWidth_px, 0.f, 1000.f},
+        {"curlTurn_deg", curlTurn_deg, 0.f, 3600.f},
+        {"overlapWidthRatio", overlapWidthRatio, 1.f, 1000.f},
+    };
+    for (const auto& r : ranges) {
+        if (!std::isfinite(r.value))
+            return std::string("SegmenterParams::") + r.name + " is not finite";
+        if (r.value < r.lo || r.value > r.hi)
+            return mustBe(r.name, "in [" + std::to_string(r.lo) + ", " + std::to_string(r.hi) + "]",
+                          r.value);
+    }
+    if ((nearDepth_m > 0.f || farDepth_m > 0.f) && !(nearDepth_m < farDepth_m))
+        return "SegmenterParams: nearDepth_m (" + std::to_string(nearDepth_m) +
+               ") must be below farDepth_m (" + std::to_string(farDepth_m) +
+               "), or both 0 for an automatic band";
+    const struct {
+        const char* name;
+        int value, lo, hi;
+    } ints[] = {
+        {"maxPlanes", maxPlanes, 0, 10},
+        {"planeSampleStride_px", planeSampleStride_px, 1, 64},
+        {"ransacIterations", ransacIterations, 1, kMaxIterations},
+        {"outlierWindow_px", outlierWindow_px, 3, kMaxKernel_px},
+        {"outlierMinNeighbours", outlierMinNeighbours, 0, kMaxKernel_px * kMaxKernel_px},
+        {"statisticalMeanK", statisticalMeanK, 1, 1000},
+        {"closeKernel_px", closeKernel_px, 0, kMaxKernel_px},
+        {"openKernel_px", openKernel_px, 0, kMaxKernel_px},
+        {"minRegionArea_px", minRegionArea_px, 0, 1 << 28},
+        {"maxHoleArea_px", maxHoleArea_px, 0, 1 << 28},
+        {"minBladeContour_px", minBladeContour_px, 3, 1 << 20},
+    };
+    for (const auto& r : ints)
+        if (r.value < r.lo || r.value > r.hi)
+            return mustBe(r.name, "in [" + std::to_string(r.lo) + ", " + std::to_string(r.hi) + "]",
+                          r.value);
+    if (outlierWindow_px % 2 == 0) return mustBe("outlierWindow_px", "odd", outlierWindow_px);
+    return {};
+}
+
+std::vector<cv::Point> Segmentation::cutPoints_px() const {
+    std::vector<cv::Point> cuts;
+    for (const auto& c : clusters)
+        for (int i : c.cutIndices) cuts.push_back(c.contour_px[static_cast<size_t>(i)]);
+    return cuts;
+}
+
+double Segmentation::totalTime_ms() const {
+    double t = 0.0;
+    for (const auto& r : report) t += r.time_ms;
+    return t;
+}
+
+std::string Segmentation::summary() const {
+    std::ostringstream s;
+    s << blades.size() << " blade(s) in " << clusters.size() << " cluster(s), band [" << nearDepth_m
+      << ", " << farDepth_m << "] m";
+    if (!noBladesReason.empty()) s << "; no blades found: " << noBladesReason;
+    s << '\n';
+    for (const auto& r : report) {
+        s << "  " << r.stage << ": dropped " << r.droppedPixels << " px, kept " << r.keptPixels
+          << " px, " << r.time_ms << " ms\n";
+        for (const auto& n : r.notes) s << "    " << n << '\n';
+    }
+    for (const auto& c : clusters)
+        for (const auto& why : c.reasons) s << "  cluster: " << why << '\n';
+    for (const auto& b : blades)
+        for (const auto& why : b.reasons) s << "  blade " << b.id << ": " << why << '\n';
+    return s.str();
+}
+
+struct Segmenter::Impl {
+    SegmenterParams params;
+
+    // Times a stage and records the mask's change.
+    template <class F>
+    void stage(Segmentation& out, const char* name, const cv::Mat1b* mask, F&& body) const {
+        StageReport r;
+        r.stage = name;
+        const int before = mask && !mask->empty() ? cv::countNonZero(*mask) : 0;
+        const auto t0 = std::chrono::steady_clock::now();
+        body(r);
+        r.time_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0)
+                        .count();
+        if (mask && !mask->empty()) {
+            r.keptPixels = cv::countNonZero(*mask);
+            if (r.droppedPixels == 0) r.droppedPixels = std::max(0, before - r.keptPixels);
+        }
+        out.report.push_back(std::move(r));
+    }
+
+    Segmentation fromDepth(const cv::Mat1w& depth_mm, const Intrinsics& intrinsics,
+                           Segmentation out) const {
+        if (cv::countNonZero(depth_mm) == 0) {
+            out.noBladesReason = "the frame has no depth readings (all pixels are 0)";
+            out.clusterMask = cv::Mat1b::zeros(depth_mm.size());
+            return out;
+        }
+        seg::DepthBand band{params.nearDepth_m, params.farDepth_m,
+                            params.nearDepth_m < params.farDepth_m};
+        const bool userBand = band.found;
+        const bool removePlanes = params.planeMethod != PlaneMethod::None && params.maxPlanes > 0;
+        cv::Mat1b mask;
+        // With a user band the band goes first (fewer points for the plane fit). Without one the
+        // ground is removed first: a side-viewed ground plane spreads over every depth from the
+        // bottom row outwards and its nearest part would otherwise be the nearest dominant mode.
+        if (userBand) {
+            stage(out, "depth band", &mask, [&](StageReport& r) {
+                r.notes.push_back("user band");
+                mask = seg::depthBandMask(depth_mm, band, r);
+            });
+        } else {
+            mask = depth_mm > 0;
+        }
+        if (removePlanes)
+            stage(out, "plane removal", &mask, [&](StageReport& r) {
+                seg::removePlanes(depth_mm, intrinsics, params, mask, r);
+            });
+        if (!userBand) {
+            stage(out, "depth band", &mask, [&](StageReport& r) {
+                band = seg::automaticDepthBand(depth_mm, mask, params, r);
+                if (band.found) {
+                    const cv::Mat1b inBand = seg::depthBandMask(depth_mm, band, r);
+                    mask &= inBand;
+                } else {
+                    mask.setTo(0);
+                }
+            });
+        }
+        out.nearDepth_m = band.near_m;
+        out.farDepth_m = band.far_m;
+        if (!band.found) {
+            out.noBladesReason = "no depth mode holds enough pixels to be a tuft (see report)";
+            out.clusterMask = cv::Mat1b::zeros(depth_mm.size());
+            return out;
+        }
+        if (params.outlierMethod != OutlierMethod::None)
+            stage(out, "outlier removal", &mask, [&](StageReport& r) {
+                seg::removeOutliers(depth_mm, intrinsics, params, mask, r);
+            });
+        return fromMask(std::move(mask), std::move(out));
+    }
+
+    Segmentation fromMask(cv::Mat1b mask, Segmentation out) const {
+        stage(out, "clean-up", &mask, [&](StageReport& r) { seg::cleanUpMask(params, mask, r); });
+        out.clusterMask = mask;
+        stage(out, "contours", &mask,
+              [&](StageReport& r) { out.clusters = seg::extractClusters(mask, params, r); });
+        stage(out, "partition", nullptr, [&](StageReport& r) {
+            for (auto& cluster : out.clusters) {
+                auto blades = seg::partitionCluster(cluster, mask, params,
+                                                    static_cast<int>(out.blades.size()) + 1, r);
+                seg::flagBlades(blades, cluster, mask.size(), params);
+                for (auto& b : blades) {
+                    cluster.bladeIds.push_back(b.id);
+                    out.blades.push_back(std::move(b));
+                }
+            }
+        });
+        if (out.blades.empty() && out.noBladesReason.empty())
+            out.noBladesReason = cv::countNonZero(mask) == 0
+                                     ? "the mask is empty after clean-up (see report)"
+                                     : "no region is large enough to hold a blade";
+        return out;
+    }
+};
+
+Segmenter::Segmenter(SegmenterParams params) : impl_(std::make_unique<Impl>()) {
+    if (auto why = params.problem(); !why.empty())
+        throw CaptureError(why + "; fix the segmentation parameters");
+    impl_->params = params;
+}
+Segmenter::~Segmenter() = default;
+Segmenter::Segmenter(Segmenter&&) noexcept = default;
+Segmenter& Segmenter::operator=(Segmenter&&) noexcept = default;
+
+const SegmenterParams& Segmenter::params() const { return impl_->params; }
+
+namespace {
+void checkFrame(const DepthFrame& f) {
+    if (f.depth_mm.empty())
+        throw CaptureError("Segmenter: depth frame " + std::to_string(f.index) +
+                           " is empty; pass a frame read from a depth source");
+    if (auto why = f.intrinsics.problem(); !why.empty())
+        throw CaptureError("Segmenter: frame " + std::to_string(f.index) +
+                           " has unusable intrinsics: " + why);
+    if (f.depth_mm.cols != f.intrinsics.width_px || f.depth_mm.rows != f.intrinsics.height_px)
+        throw CaptureError("Segmenter: frame " + std::to_string(f.index) + " is " +
+                           std::to_string(f.depth_mm.cols) + "x" + std::to_string(f.depth_mm.rows) +
+                           " px but its intrinsics say " + std::to_string(f.intrinsics.width_px) +
+                           "x" + std::to_string(f.intrinsics.height_px) +
+                           "; fix the source's intrinsics");
+}
+}  // namespace
+
+Segmentation Segmenter::segment(const DepthFrame& frame) const {
+    checkFrame(frame);
+    return impl_->fromDepth(frame.depth_mm, frame.intrinsics, {});
+}
+
+Segmentation Segmenter::segment(std::span<const DepthFrame> frames) const {
+    if (frames.empty())
+        throw CaptureError("Segmenter: no frames given; pass at least one depth frame");
+    for (const auto& f : frames) {
+        checkFrame(f);
+        if (f.depth_mm.size() != frames[0].depth_mm.size() ||
+            !(f.intrinsics == frames[0].intrinsics))
+            throw CaptureError("Segmenter: frame " + std::to_string(f.index) +
+                               " differs in size or intrinsics from frame " +
+                               std::to_string(frames[0].index) +
+                               "; temporal fusion needs frames of one camera");
+    }
+    if (frames.size() == 1) return segment(frames[0]);
+    Segmentation out;
+    cv::Mat1w fused;
+    impl_->stage(out, "temporal fusion", nullptr, [&](StageReport& r) {
+        fused = seg::fuseFrames(frames, impl_->params.minValidFrameFraction, r);
+    });
+    return impl_->fromDepth(fused, frames[0].intrinsics, std::move(out));
+}
+
+Segmentation Segmenter::segmentMask(const cv::Mat1b& mask) const {
+    if (mask.empty()) throw CaptureError("Segmenter::segmentMask: the mask is empty (0x0)");
+    cv::Mat1b binary = mask > 0;
+    return impl_->fromMask(binary, {});
+}
+
+}  // namespace meadow::capture

@@ -1,0 +1,65 @@
+#pragma once
+// Internal: one function per segmentation stage (one .cpp each). Masks are CV_8U, 255 = kept.
+// Each stage appends what it dropped to the StageReport it is given.
+#include <opencv2/core/mat.hpp>
+#include <span>
+#include <vector>
+
+#include "meadow/capture/depth_frame.h"
+#include "meadow/capture/segmenter.h"
+
+namespace meadow::capture::segmentation {
+
+inline constexpr float kMillimetresPerMetre = 1000.0f;
+
+// temporal_fusion.cpp: per-pixel median of the non-zero readings; pixels valid in fewer than
+// minValidFrameFraction of the frames read 0.
+cv::Mat1w fuseFrames(std::span<const DepthFrame> frames, float minValidFrameFraction,
+                     StageReport& report);
+
+// depth_band_mask.cpp
+struct DepthBand {
+    float near_m = 0.0f;
+    float far_m = 0.0f;
+    bool found = false;
+};
+// The nearest histogram mode with enough mass, widened to its valleys (Fan & Sheng 2017,
+// Sec. 4.1 use a user-set depth band; this finds one when the user gives none).
+// Only pixels set in `mask` count (ground removed first, so the ground's own mode cannot win).
+DepthBand automaticDepthBand(const cv::Mat1w& depth_mm, const cv::Mat1b& mask,
+                             const SegmenterParams& params, StageReport& report);
+cv::Mat1b depthBandMask(const cv::Mat1w& depth_mm, DepthBand band, StageReport& report);
+
+// plane_removal.cpp (PCL). Clears mask pixels on large oblique planes (ground, table top).
+void removePlanes(const cv::Mat1w& depth_mm, const Intrinsics& intrinsics,
+                  const SegmenterParams& params, cv::Mat1b& mask, StageReport& report);
+
+// outlier_removal.cpp (PCL for Statistical).
+void removeOutliers(const cv::Mat1w& depth_mm, const Intrinsics& intrinsics,
+                    const SegmenterParams& params, cv::Mat1b& mask, StageReport& report);
+
+// morphology_cleanup.cpp: closing, optional opening, small regions dropped, small holes filled.
+void cleanUpMask(const SegmenterParams& params, cv::Mat1b& mask, StageReport& report);
+
+// contour_extraction.cpp: one cluster per remaining region, with contour, centre, base point
+// and reference; flags holes (crossing blades) and hidden bases.
+std::vector<BladeCluster> extractClusters(const cv::Mat1b& mask, const SegmenterParams& params,
+                                          StageReport& report);
+
+// blade_partition.cpp: persistent minima of the smoothed distance cut each cluster's contour
+// into blades ordered base A -> tip -> base B, each with its mask.
+std::vector<BladeContour> partitionCluster(BladeCluster& cluster, const cv::Mat1b& mask,
+                                           const SegmenterParams& params, int firstId,
+                                           StageReport& report);
+// Persistence of every local minimum of a circular signal (sublevel-set filtration); the
+// global minimum gets +infinity. Returned as (index, persistence), sorted by index.
+std::vector<std::pair<int, float>> circularMinimaPersistence(std::span<const float> signal);
+std::vector<float> smoothCircular(std::span<const float> signal, float sigma_samples);
+
+// blade_flags.cpp: per-blade flags with reasons (thin, curled, truncated, overlapping).
+void flagBlades(std::span<BladeContour> blades, const BladeCluster& cluster, cv::Size frameSize,
+                const SegmenterParams& params);
+void addFlag(BladeContour& blade, BladeFlag flag, std::string reason);
+void addFlag(BladeCluster& cluster, BladeFlag flag, std::string reason);
+
+}  // namespace meadow::capture::segmentation

@@ -1,0 +1,423 @@
+// Segmenter on tufts drawn with OpenCV (known blades at known depths over a ground plane and a
+// back wall): blade recall and IoU, the contour ordering contract, every stage's report, flags,
+// bad input. The simulated-sensor accuracy lives in segmentation_accuracy_test.cpp.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
+
+#include "../../capture/src/segmentation/drawn_tuft.h"
+#include "../../capture/src/segmentation/stages.h"
+#include "meadow/capture/error.h"
+#include "meadow/capture/segmenter.h"
+
+namespace meadow::capture {
+namespace {
+
+struct Match {
+    int truthCount = 0, foundCount = 0, matchedTruth = 0, matchedFound = 0;
+    std::vector<double> iou;  // best IoU per true blade
+    [[nodiscard]] double recall() const {
+        return truthCount ? double(matchedTruth) / truthCount : 0;
+    }
+    [[nodiscard]] double precision() const {
+        return foundCount ? double(matchedFound) / foundCount : 0;
+    }
+    [[nodiscard]] double medianIou() const {
+        if (iou.empty()) return 0;
+        auto v = iou;
+        std::nth_element(v.begin(), v.begin() + static_cast<long>(v.size() / 2), v.end());
+        return v[v.size() / 2];
+    }
+};
+
+constexpr double kMatchIou = 0.5;
+
+// MEADOW_SEGMENTATION_DEBUG=<folder> writes each checked frame's overlay there, for a look.
+void maybeWriteOverlay(const DepthFrame& frame, const Segmentation& s) {
+    const char* folder = std::getenv("MEADOW_SEGMENTATION_DEBUG");
+    if (!folder) return;
+    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+    writeDebugOverlay(std::filesystem::path(folder) / (std::string(info->name()) + ".png"), frame,
+                      s);
+}
+
+Match match(const cv::Mat1w& labels, int bladeCount, const Segmentation& s) {
+    Match m;
+    m.truthCount = bladeCount;
+    m.foundCount = static_cast<int>(s.blades.size());
+    std::vector<char> foundMatched(s.blades.size(), 0);
+    for (int id = 1; id <= bladeCount; ++id) {
+        const cv::Mat1b truth = labels == id;
+        double best = 0;
+        size_t bestIndex = 0;
+        for (size_t k = 0; k < s.blades.size(); ++k) {
+            const double inter = cv::countNonZero(truth & s.blades[k].mask);
+            const double uni = cv::countNonZero(truth | s.blades[k].mask);
+            if (uni > 0 && inter / uni > best) best = inter / uni, bestIndex = k;
+        }
+        m.iou.push_back(best);
+        if (best >= kMatchIou) {
+            ++m.matchedTruth;
+            foundMatched[bestIndex] = 1;
+        }
+    }
+    m.matchedFound = static_cast<int>(std::count(foundMatched.begin(), foundMatched.end(), 1));
+    DepthFrame f;
+    f.depth_mm = labels * 4000;  // the truth as the overlay's grey image
+    f.intrinsics.width_px = labels.cols;
+    f.intrinsics.height_px = labels.rows;
+    maybeWriteOverlay(f, s);
+    return m;
+}
+
+std::string describe(const Match& m, const Segmentation& s) {
+    std::ostringstream o;
+    o << "recall " << m.recall() << " precision " << m.precision() << " median IoU "
+      << m.medianIou() << " (" << m.foundCount << " found / " << m.truthCount << " true)\n"
+      << s.summary();
+    return o.str();
+}
+
+TEST(Segmenter, FindsEveryBladeOfADrawnFanOverGroundAndWall) {
+    const auto drawn = drawn::draw(drawn::fan(7));
+    const Segmentation s = Segmenter().segment(drawn.frame);
+    const Match m = match(drawn.labels, drawn.bladeCount, s);
+    EXPECT_EQ(m.recall(), 1.0) << describe(m, s);
+    EXPECT_EQ(m.precision(), 1.0) << describe(m, s);
+    EXPECT_GE(m.medianIou(), 0.85) << describe(m, s);
+}
+
+TEST(Segmenter, ContoursRunFromOneBaseSideOverTheTipToTheOther) {
+    const auto scene = drawn::fan(5);
+    const auto drawn = drawn::draw(scene);
+    const Segmentation s = Segmenter().segment(drawn.frame);
+    ASSERT_EQ(s.blades.size(), 5u) << s.summary();
+    ASSERT_EQ(s.clusters.size(), 1u);
+    const auto& c = s.clusters[0];
+    for (const auto& b : s.blades) {
+        ASSERT_GT(b.contour_px.size(), 10u);
+        ASSERT_GE(b.tipIndex, 1);
+        ASSERT_LT(b.tipIndex, static_cast<int>(b.contour_px.size()) - 1);
+        const cv::Point2f tip = b.contour_px[static_cast<size_t>(b.tipIndex)];
+        // The tip is the farthest point from the reference, and both ends are nearer to it.
+        const auto dist = [&](cv::Point p) { return cv::norm(cv::Point2f(p) - c.reference_px); };
+        for (const auto& p : b.contour_px) EXPECT_LE(dist(p), dist(cv::Point(tip)) + 1.0);
+        EXPECT_LT(dist(b.contour_px.front()), 0.6 * dist(cv::Point(tip)));
+        EXPECT_LT(dist(b.contour_px.back()), 0.6 * dist(cv::Point(tip)));
+        // The tip is one of the drawn tips.
+        double nearest = 1e9;
+        for (const auto& t : scene.blades) nearest = std::min(nearest, cv::norm(t.tip_px - tip));
+        EXPECT_LT(nearest, 4.0) << "blade " << b.id << " tip " << tip;
+        EXPECT_GT(cv::countNonZero(b.mask), 100);
+    }
+    EXPECT_EQ(s.cutPoints_px().size(), 5u);
+}
+
+TEST(Segmenter, KeepsRecallUnderDepthNoiseDropoutsAndFlyingPixels) {
+    drawn::Noise noise{.sigma_mm = 4.f,
+                       .dropoutRate = 0.03f,
+                       .flyingPixelRate = 0.3f,
+                       .lateralJitter_px = 1,
+                       .seed = 7};
+    const auto drawn = drawn::draw(drawn::fan(9, 65.f), noise);
+    const Segmentation s = Segmenter().segment(drawn.frame);
+    const Match m = match(drawn.labels, drawn.bladeCount, s);
+    EXPECT_GE(m.recall(), 0.95) << describe(m, s);
+    EXPECT_GE(m.medianIou(), 0.8) << describe(m, s);
+}
+
+TEST(Segmenter, BothPlaneFittersRemoveTheGroundAndKeepTheBlades) {
+    const auto drawn = drawn::draw(drawn::fan(5));
+    for (auto method : {PlaneMethod::Ransac, PlaneMethod::OrganizedMultiPlane}) {
+        SegmenterParams p;
+        p.planeMethod = method;
+        p.nearDepth_m = 0.5f;  // a user band that holds the whole near ground
+        p.farDepth_m = 2.0f;
+        const Segmentation s = Segmenter(p).segment(drawn.frame);
+        const cv::Mat1b ground =
+            (drawn.labels == 0) & (drawn.frame.depth_mm > 0) & (drawn.frame.depth_mm < 2000);
+        const int groundLeft = cv::countNonZero(ground & s.clusterMask);
+        const int groundTotal = cv::countNonZero(ground);
+        EXPECT_LT(groundLeft, groundTotal / 50) << toString(method) << '\n' << s.summary();
+        const Match m = match(drawn.labels, drawn.bladeCount, s);
+        EXPECT_EQ(m.recall(), 1.0) << toString(method) << '\n' << describe(m, s);
+        const auto& plane = *std::find_if(s.report.begin(), s.report.end(),
+                                          [](const auto& r) { return r.stage == "plane removal"; });
+        EXPECT_GT(plane.droppedPixels, groundTotal / 2) << toString(method);
+    }
+}
+
+TEST(Segmenter, WithoutPlaneRemovalAUserBandHoldingTheGroundKeepsIt) {
+    // The control for the test above: the ground really is inside that band.
+    const auto drawn = drawn::draw(drawn::fan(5));
+    SegmenterParams p;
+    p.planeMethod = PlaneMethod::None;
+    p.nearDepth_m = 0.5f;
+    p.farDepth_m = 2.0f;
+    const Segmentation s = Segmenter(p).segment(drawn.frame);
+    const cv::Mat1b ground =
+        (drawn.labels == 0) & (drawn.frame.depth_mm > 0) & (drawn.frame.depth_mm < 2000);
+    EXPECT_GT(cv::countNonZero(ground & s.clusterMask), cv::countNonZero(ground) / 2);
+}
+
+TEST(Segmenter, AutomaticBandIsTheTuftsDepthMode) {
+    const auto drawn = drawn::draw(drawn::fan(7));
+    const Segmentation s = Segmenter().segment(drawn.frame);
+    EXPECT_LE(s.nearDepth_m, 1.0f);
+    EXPECT_GE(s.farDepth_m, 1.02f);
+    EXPECT_LT(s.farDepth_m - s.nearDepth_m, 1.0f);
+}
+
+TEST(Segmenter, EveryStageReportsWhatItDropped) {
+    drawn::Noise noise{.sigma_mm = 3.f, .dropoutRate = 0.02f, .flyingPixelRate = 0.3f, .seed = 3};
+    const auto drawn = drawn::draw(drawn::fan(5), noise);
+    const Segmentation s = Segmenter().segment(drawn.frame);
+    std::vector<std::string> stages;
+    for (const auto& r : s.report) {
+        stages.push_back(r.stage);
+        EXPECT_FALSE(r.notes.empty()) << r.stage;
+        EXPECT_GE(r.time_ms, 0.0);
+    }
+    const std::vector<std::string> expected{"plane removal", "depth band", "outlier removal",
+                                            "clean-up",      "contours",   "partition"};
+    EXPECT_EQ(stages, expected);
+    const auto outliers = std::find_if(s.report.begin(), s.report.end(),
+                                       [](const auto& r) { return r.stage == "outlier removal"; });
+    EXPECT_GT(outliers->droppedPixels, 0) << s.summary();
+}
+
+TEST(Segmenter, StatisticalOutlierRemovalAlsoKeepsEveryBlade) {
+    drawn::Noise noise{.sigma_mm = 3.f, .flyingPixelRate = 0.3f, .seed = 5};
+    const auto drawn = drawn::draw(drawn::fan(5), noise);
+    SegmenterParams p;
+    p.outlierMethod = OutlierMethod::Statistical;
+    const Segmentation s = Segmenter(p).segment(drawn.frame);
+    const Match m = match(drawn.labels, drawn.bladeCount, s);
+    EXPECT_EQ(m.recall(), 1.0) << describe(m, s);
+}
+
+TEST(Segmenter, ContourCentreReferenceAlsoPartitionsAFan) {
+    const auto drawn = drawn::draw(drawn::fan(5));
+    SegmenterParams p;
+    p.reference = ReferencePoint::ContourCentre;
+    const Segmentation s = Segmenter(p).segment(drawn.frame);
+    const Match m = match(drawn.labels, drawn.bladeCount, s);
+    EXPECT_GE(m.recall(), 0.8) << describe(m, s);
+}
+
+TEST(Segmenter, TemporalFusionRecoversFromPerFrameDropouts) {
+    const auto scene = drawn::fan(7);
+    std::vector<DepthFrame> frames;
+    for (unsigned i = 0; i < 5; ++i) {
+        auto d = drawn::draw(
+            scene, {.sigma_mm = 3.f, .dropoutRate = 0.3f, .flyingPixelRate = 0.3f, .seed = 11 + i});
+        d.frame.index = static_cast<int>(i);
+        frames.push_back(d.frame);
+    }
+    const auto truth = drawn::draw(scene);
+    const Segmentation fused = Segmenter().segment(std::span<const DepthFrame>(frames));
+    const Match m = match(truth.labels, truth.bladeCount, fused);
+    EXPECT_EQ(m.recall(), 1.0) << describe(m, fused);
+    EXPECT_GE(m.medianIou(), 0.85) << describe(m, fused);
+    EXPECT_EQ(fused.report.front().stage, "temporal fusion");
+}
+
+TEST(Segmenter, FusionRejectsFramesOfDifferentSizes) {
+    auto a = drawn::draw(drawn::fan(3)).frame;
+    DepthFrame b = a;
+    b.depth_mm = cv::Mat1w(240, 320, std::uint16_t{1000});
+    b.intrinsics.width_px = 320;
+    b.intrinsics.height_px = 240;
+    std::vector<DepthFrame> frames{a, b};
+    EXPECT_THROW((void)Segmenter().segment(std::span<const DepthFrame>(frames)), CaptureError);
+    EXPECT_THROW((void)Segmenter().segment(std::span<const DepthFrame>()), CaptureError);
+}
+
+TEST(Segmenter, AllZeroFrameGivesNoBladesWithAReason) {
+    DepthFrame f;
+    f.depth_mm = cv::Mat1w(480, 640, std::uint16_t{0});
+    const Segmentation s = Segmenter().segment(f);
+    EXPECT_TRUE(s.empty());
+    EXPECT_NE(s.noBladesReason.find("no depth readings"), std::string::npos) << s.noBladesReason;
+}
+
+TEST(Segmenter, EmptyMaskGivesNoBladesWithAReason) {
+    const Segmentation s = Segmenter().segmentMask(cv::Mat1b(480, 640, std::uint8_t{0}));
+    EXPECT_TRUE(s.empty());
+    EXPECT_FALSE(s.noBladesReason.empty());
+}
+
+TEST(Segmenter, UserBandWithNothingInItGivesNoBladesWithAReason) {
+    SegmenterParams p;
+    p.nearDepth_m = 5.0f;
+    p.farDepth_m = 6.0f;
+    const Segmentation s = Segmenter(p).segment(drawn::draw(drawn::fan(3)).frame);
+    EXPECT_TRUE(s.empty());
+    EXPECT_FALSE(s.noBladesReason.empty());
+}
+
+TEST(Segmenter, AbsurdButValidParamsGiveNoBladesNotACrash) {
+    SegmenterParams p;
+    p.minRegionArea_px = 1 << 27;
+    p.minPersistenceFraction = 1.0f;
+    p.closeKernel_px = 101;
+    p.outlierWindow_px = 101;
+    p.outlierMinNeighbours = 10000;
+    const Segmentation s = Segmenter(p).segment(drawn::draw(drawn::fan(3)).frame);
+    EXPECT_TRUE(s.empty());
+    EXPECT_FALSE(s.noBladesReason.empty());
+}
+
+TEST(Segmenter, RejectsBrokenParamsAndFrames) {
+    SegmenterParams p;
+    p.planeDistance_m = -1.f;
+    EXPECT_THROW(Segmenter{p}, CaptureError);
+    p = {};
+    p.smoothingSigma_px = std::numeric_limits<float>::quiet_NaN();
+    EXPECT_THROW(Segmenter{p}, CaptureError);
+    p = {};
+    p.nearDepth_m = 2.f;
+    p.farDepth_m = 1.f;
+    EXPECT_THROW(Segmenter{p}, CaptureError);
+    p = {};
+    p.outlierWindow_px = 4;
+    EXPECT_THROW(Segmenter{p}, CaptureError);
+
+    DepthFrame empty;
+    EXPECT_THROW((void)Segmenter().segment(empty), CaptureError);
+    DepthFrame wrongSize;
+    wrongSize.depth_mm = cv::Mat1w(100, 100, std::uint16_t{1000});
+    EXPECT_THROW((void)Segmenter().segment(wrongSize), CaptureError);
+}
+
+TEST(Segmenter, SingleBladeIsOneContourWithItsTip) {
+    drawn::Scene scene;
+    drawn::Blade b;
+    b.base_px = {320, 410};
+    b.control_px = {322, 330};
+    b.tip_px = {330, 250};
+    scene.blades.push_back(b);
+    const auto drawn = drawn::draw(scene);
+    const Segmentation s = Segmenter().segment(drawn.frame);
+    ASSERT_EQ(s.blades.size(), 1u) << s.summary();
+    const auto tip = s.blades[0].contour_px[static_cast<size_t>(s.blades[0].tipIndex)];
+    EXPECT_LT(cv::norm(cv::Point2f(tip) - b.tip_px), 4.0);
+}
+
+bool hasFlag(const BladeContour& b, BladeFlag f) {
+    return std::find(b.flags.begin(), b.flags.end(), f) != b.flags.end();
+}
+
+TEST(SegmenterFlags, BladeLeavingTheImageIsTruncated) {
+    drawn::Scene scene = drawn::fan(3);
+    scene.blades[1].tip_px = {320, -30};
+    scene.blades[1].control_px = {320, 200};
+    const Segmentation s = Segmenter().segment(drawn::draw(scene).frame);
+    const int truncated =
+        static_cast<int>(std::count_if(s.blades.begin(), s.blades.end(), [](const auto& b) {
+            return hasFlag(b, BladeFlag::Truncated);
+        }));
+    EXPECT_EQ(truncated, 1) << s.summary();
+    for (const auto& b : s.blades)
+        if (hasFlag(b, BladeFlag::Truncated)) {
+            EXPECT_FALSE(b.reasons.empty());
+        }
+}
+
+TEST(SegmenterFlags, HairThinBladeIsTooThin) {
+    const cv::Mat1b mask(480, 640, std::uint8_t{0});
+    cv::line(mask, {320, 400}, {330, 200}, 255, 1);
+    cv::rectangle(mask, {300, 400}, {340, 410}, 255, cv::FILLED);
+    SegmenterParams p;
+    p.closeKernel_px = 0;
+    const Segmentation s = Segmenter(p).segmentMask(mask);
+    ASSERT_FALSE(s.empty()) << s.summary();
+    EXPECT_TRUE(std::any_of(s.blades.begin(), s.blades.end(), [](const auto& b) {
+        return hasFlag(b, BladeFlag::TooThin);
+    })) << s.summary();
+}
+
+TEST(SegmenterFlags, CrossingBladesAreOverlapping) {
+    drawn::Scene scene;
+    drawn::Blade a, b;
+    a.base_px = {290, 410};
+    a.control_px = {320, 320};
+    a.tip_px = {380, 230};
+    b.base_px = {350, 410};
+    b.control_px = {320, 320};
+    b.tip_px = {260, 230};
+    b.depth_m = 0.98f;
+    scene.blades = {a, b};
+    const Segmentation s = Segmenter().segment(drawn::draw(scene).frame);
+    ASSERT_FALSE(s.empty()) << s.summary();
+    const bool flagged =
+        std::any_of(s.blades.begin(), s.blades.end(),
+                    [](const auto& bl) { return hasFlag(bl, BladeFlag::Overlapping); }) ||
+        std::any_of(s.clusters.begin(), s.clusters.end(), [](const auto& c) {
+            return std::find(c.flags.begin(), c.flags.end(), BladeFlag::Overlapping) !=
+                   c.flags.end();
+        });
+    EXPECT_TRUE(flagged) << s.summary();
+}
+
+TEST(SegmenterFlags, BladeCurlingBackIsFlagged) {
+    const cv::Mat1b mask(480, 640, std::uint8_t{0});
+    // A hook: up, over, and down again.
+    std::vector<cv::Point> spine{{300, 420}, {300, 250}, {330, 215}, {370, 230}, {385, 300}};
+    cv::polylines(mask, std::vector<std::vector<cv::Point>>{spine}, false, 255, 9);
+    const Segmentation s = Segmenter().segmentMask(mask);
+    ASSERT_FALSE(s.empty()) << s.summary();
+    EXPECT_TRUE(std::any_of(s.blades.begin(), s.blades.end(), [](const auto& b) {
+        return hasFlag(b, BladeFlag::CurlsSideways);
+    })) << s.summary();
+}
+
+TEST(SegmenterFlags, StraightBladesRaiseNoFlags) {
+    const Segmentation s = Segmenter().segment(drawn::draw(drawn::fan(5)).frame);
+    for (const auto& b : s.blades) EXPECT_TRUE(b.flags.empty()) << s.summary();
+}
+
+TEST(SegmenterFlags, ClusterCutByTheBottomBorderHasItsBaseHidden) {
+    const cv::Mat1b mask(480, 640, std::uint8_t{0});
+    cv::rectangle(mask, {300, 300}, {340, 479}, 255, cv::FILLED);
+    const Segmentation s = Segmenter().segmentMask(mask);
+    ASSERT_FALSE(s.empty());
+    EXPECT_TRUE(hasFlag(s.blades[0], BladeFlag::BaseHidden)) << s.summary();
+}
+
+TEST(SegmenterPersistence, OnlyDeepMinimaSurviveAThreshold) {
+    // Valleys at 0 (global), 1 (walled in by 9 before it meets a lower one) and 4.5 (its
+    // component meets the one of 3 at the 8 between them).
+    const std::vector<float> signal{0, 5, 10, 5, 1, 6, 9, 5, 4.5f, 5, 8, 3};
+    const auto minima = segmentation::circularMinimaPersistence(signal);
+    ASSERT_EQ(minima.size(), 3u);
+    EXPECT_EQ(minima[0].first, 0);
+    EXPECT_TRUE(std::isinf(minima[0].second));
+    EXPECT_EQ(minima[1].first, 4);
+    EXPECT_FLOAT_EQ(minima[1].second, 8.f);  // rises to 9 before reaching a lower minimum
+    EXPECT_EQ(minima[2].first, 8);
+    EXPECT_FLOAT_EQ(minima[2].second, 3.5f);
+}
+
+TEST(SegmenterOverlay, WritesAPngWithEveryBladeColoured) {
+    const auto drawn = drawn::draw(drawn::fan(5));
+    const Segmentation s = Segmenter().segment(drawn.frame);
+    const auto path =
+        std::filesystem::temp_directory_path() / "meadow_segmentation_overlay_test.png";
+    std::filesystem::remove(path);
+    writeDebugOverlay(path, drawn.frame, s);
+    const cv::Mat image = cv::imread(path.string(), cv::IMREAD_COLOR);
+    ASSERT_EQ(image.size(), drawn.frame.depth_mm.size());
+    // Blade pixels are coloured (not grey).
+    const cv::Vec3b px =
+        image.at<cv::Vec3b>(s.blades[0].contour_px[static_cast<size_t>(s.blades[0].tipIndex)]);
+    EXPECT_FALSE(px[0] == px[1] && px[1] == px[2]);
+    std::filesystem::remove(path);
+    EXPECT_THROW(writeDebugOverlay("/proc/no/such/dir/x.png", drawn.frame, s), CaptureError);
+}
+
+}  // namespace
+}  // namespace meadow::capture
