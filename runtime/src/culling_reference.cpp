@@ -15,8 +15,9 @@ using gpu::BladeGpu;
 using gpu::BladeRestGpu;
 using gpu::CullParamsGpu;
 using gpu::PhysicsParamsGpu;
-#include "../../shaders/common_culling.glsl"
 #include "../../shaders/common_physics.glsl"
+// common_culling.glsl uses common_physics.glsl: keep this order (separate include blocks).
+#include "../../shaders/common_culling.glsl"
 }  // namespace cull_shader
 
 gpu::CullParamsGpu packCullParams(const CullSettings& s, const glm::mat4& clipFromWorld,
