@@ -48,7 +48,11 @@ cv::Mat1b depthDiscontinuities(const cv::Mat1f& surface_m) {
 
 void applyLateralNoise(EdgeState& state, float sigma_px, std::uint64_t seed) {
     if (!(sigma_px > 0.f)) return;
-    const int reach_px = std::max(1, static_cast<int>(std::ceil(kLateralReachSigmas * sigma_px)));
+    // Beyond the image's size a wider band changes nothing.
+    const float reachLimit_px =
+        static_cast<float>(std::max(state.surface_m.cols, state.surface_m.rows));
+    const int reach_px = std::max(
+        1, static_cast<int>(std::ceil(std::min(kLateralReachSigmas * sigma_px, reachLimit_px))));
     cv::Mat1b band;
     cv::dilate(depthDiscontinuities(state.surface_m), band,
                cv::getStructuringElement(cv::MORPH_RECT, {2 * reach_px + 1, 2 * reach_px + 1}));
@@ -61,10 +65,11 @@ void applyLateralNoise(EdgeState& state, float sigma_px, std::uint64_t seed) {
         for (int x = 0; x < w; ++x) {
             if (!band(y, x)) continue;
             PixelRng rng(seed, NoiseStream::Lateral, pixelIndex(x, y, w));
-            const auto dx = static_cast<int>(std::lround(sigma_px * rng.normal()));
-            const auto dy = static_cast<int>(std::lround(sigma_px * rng.normal()));
-            const int sx = std::clamp(x + dx, 0, w - 1);
-            const int sy = std::clamp(y + dy, 0, h - 1);
+            // Clamped in long before narrowing, so no sigma can overflow the pixel arithmetic.
+            const long dx = std::lround(sigma_px * rng.normal());
+            const long dy = std::lround(sigma_px * rng.normal());
+            const auto sx = static_cast<int>(std::clamp<long>(x + dx, 0, w - 1));
+            const auto sy = static_cast<int>(std::clamp<long>(y + dy, 0, h - 1));
             state.surface_m(y, x) = source.surface_m(sy, sx);
             state.reading_m(y, x) = source.reading_m(sy, sx);
             state.incidence_rad(y, x) = source.incidence_rad(sy, sx);
