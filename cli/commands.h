@@ -3,4 +3,12 @@
 // A verb is added only when it works end to end.
 #include <CLI/CLI.hpp>
 
-namespace meadow::cli {}  // namespace meadow::cli
+namespace meadow::cli {
+
+// meadow convert RECORDING OUT.oni | IN.oni OUT_DIR (convert_command.cpp)
+void addCaptureCommand(CLI::App& app);
+void addConvertCommand(CLI::App& app);
+// meadow synth --preset NAME --out DIR | --list (synth_command.cpp)
+void addSynthCommand(CLI::App& app);
+
+}  // namespace meadow::cli

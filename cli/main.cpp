@@ -9,6 +9,9 @@ int main(int argc, char** argv) {
     CLI::App app{"meadow: capture real grass with a depth camera and render meadows of it"};
     app.require_subcommand(1);
     app.set_version_flag("--version", "meadow 0.1.0");
+    meadow::cli::addCaptureCommand(app);
+    meadow::cli::addConvertCommand(app);
+    meadow::cli::addSynthCommand(app);
 
     try {
         app.parse(argc, argv);

@@ -1,0 +1,129 @@
+// `meadow capture`: a depth source -> an archetype library (JSON, optionally .glb).
+#include <CLI/CLI.hpp>
+#include <iostream>
+#include <memory>
+#include <string>
+
+#include "commands.h"
+#include "meadow/capture/depth_source.h"
+#include "meadow/modeling/archetype_glb.h"
+#include "meadow/modeling/capture_pipeline.h"
+#include "progress.h"
+#include "source_options.h"
+
+namespace meadow::cli {
+
+namespace {
+
+struct CaptureArgs {
+    std::string source;
+    std::string out;
+    std::string glb;
+    std::string debug;
+    SourceArgs sourceArgs;
+    modeling::CaptureOptions options;
+    float tolerance_mm = 0.f;
+    std::string plane = "ransac";
+    bool verbose = false;
+};
+
+capture::PlaneMethod planeMethod(const std::string& name) {
+    if (name == "none") return capture::PlaneMethod::None;
+    if (name == "organized") return capture::PlaneMethod::OrganizedMultiPlane;
+    return capture::PlaneMethod::Ransac;
+}
+
+void runCapture(CaptureArgs& args) {
+    modeling::CaptureOptions options = args.options;
+    options.debugDir = args.debug;
+    options.segmenter.planeMethod = planeMethod(args.plane);
+    if (args.tolerance_mm > 0.f) options.fit.widthTolerance_m = args.tolerance_mm * 1e-3f;
+
+    auto source = capture::openDepthSource(args.source, toSourceOptions(args.sourceArgs));
+    const int frames = source->info().frameCount;
+    Progress progress("capture", static_cast<std::size_t>(frames > 0 ? frames : 1));
+    const modeling::CaptureResult result = modeling::captureArchetypes(
+        *source, args.source, options,
+        [&progress](int done, int) { progress.update(static_cast<std::size_t>(done)); });
+    progress.finish();
+
+    modeling::saveArchetypeLibrary(result.library, args.out);
+    if (!args.glb.empty()) modeling::exportArchetypeGlb(result.library, args.glb);
+
+    const auto& s = result.summary;
+    std::cout << "captured " << s.bladesModelled << " of " << s.bladesFound << " blade(s) from "
+              << s.framesRead << " frame(s) -> " << result.library.archetypes.size()
+              << " archetype(s) in " << args.out << (args.glb.empty() ? "" : " and " + args.glb)
+              << '\n';
+    if (!s.notes.empty()) {
+        std::cout << s.notes.size() << " note(s)"
+                  << (args.verbose ? ":" : " (--verbose lists them)") << '\n';
+        if (args.verbose)
+            for (const auto& note : s.notes) std::cout << "  " << note << '\n';
+    }
+}
+
+}  // namespace
+
+void addCaptureCommand(CLI::App& app) {
+    auto args = std::make_shared<CaptureArgs>();
+    CLI::App* cmd = app.add_subcommand(
+        "capture",
+        "Cut the tuft seen by a depth source into single blades and model each as an archetype "
+        "(quadratic Bezier spine + width profile): writes an archetype library");
+    cmd->add_option("SOURCE", args->source,
+                    "Recording folder, plain folder of 16-bit PNGs (with --intrinsics and "
+                    "--depth-unit), .oni file, or openni:// for a live camera")
+        ->required();
+    cmd->add_option("--out", args->out, "Archetype library JSON to write")->required();
+    cmd->add_option("--glb", args->glb,
+                    "Also write the library as glTF 2.0 binary (one mesh per archetype)");
+    cmd->add_option("--debug", args->debug,
+                    "Folder for an overlay PNG per segmentation (mask, contour, cuts, blades)");
+    cmd->add_option("--fuse", args->options.fusionFrames,
+                    "Frames fused (per-pixel median) per segmentation, for a still tuft; 1 = each "
+                    "frame alone")
+        ->default_val(3)
+        ->check(CLI::Range(1, 64));
+    cmd->add_option("--max-frames", args->options.maxFrames,
+                    "Stop after this many frames (0 = all)")
+        ->default_val(0)
+        ->check(CLI::NonNegativeNumber);
+    cmd->add_option(
+           "--max-archetypes", args->options.maxArchetypes,
+           "Merge near-duplicate blades until at most this many archetypes remain (0 = keep all)")
+        ->default_val(0)
+        ->check(CLI::NonNegativeNumber);
+    cmd->add_option(
+           "--tolerance-mm", args->tolerance_mm,
+           "Width-profile tolerance: the fewest width samples whose mean error is within it (0 = "
+           "always 16)")
+        ->default_val(0.f)
+        ->check(CLI::Range(0.f, 100.f));
+    cmd->add_option("--knots", args->options.fit.refinedKnots,
+                    "Skeleton knots kept by the movement-similarity refiner (0 = no refining)")
+        ->default_val(16)
+        ->check(CLI::Range(0, 128));
+    cmd->add_option("--near", args->options.segmenter.nearDepth_m,
+                    "Near edge of the depth band in metres (0 with --far 0: automatic)")
+        ->default_val(0.f)
+        ->check(CLI::Range(0.f, 20.f));
+    cmd->add_option("--far", args->options.segmenter.farDepth_m,
+                    "Far edge of the depth band in metres")
+        ->default_val(0.f)
+        ->check(CLI::Range(0.f, 20.f));
+    cmd->add_option("--plane", args->plane,
+                    "Ground/background plane removal: ransac (PCL SACSegmentation), organized (PCL "
+                    "OrganizedMultiPlaneSegmentation) or none")
+        ->default_val("ransac")
+        ->check(CLI::IsMember({"ransac", "organized", "none"}));
+    cmd->add_flag(
+        "--keep-flagged", args->options.keepFlagged,
+        "Also model blades the segmenter flagged (overlapping, curling, too thin, base hidden)");
+    cmd->add_flag("--verbose", args->verbose,
+                  "List every skipped blade and empty frame with its reason");
+    addSourceOptions(*cmd, args->sourceArgs);
+    cmd->callback([args] { runCapture(*args); });
+}
+
+}  // namespace meadow::cli

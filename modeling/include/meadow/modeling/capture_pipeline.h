@@ -1,0 +1,48 @@
+#pragma once
+// The capture job end to end: a depth source -> segmentation -> one archetype per trustworthy
+// blade -> an archetype library. Frames are taken in groups of `fusionFrames` (fused by the
+// segmenter's per-pixel median, for a still tuft); every group yields its own blades.
+#include <filesystem>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "meadow/capture/depth_source.h"
+#include "meadow/capture/segmenter.h"
+#include "meadow/modeling/archetype_library.h"
+#include "meadow/modeling/blade_fit.h"
+
+namespace meadow::modeling {
+
+struct CaptureOptions {
+    capture::SegmenterParams segmenter;
+    BladeFitParams fit;
+    int fusionFrames = 3;      // frames fused per segmentation; 1 = every frame on its own
+    int maxFrames = 0;         // stop after this many frames; 0 = the whole source
+    int maxArchetypes = 0;     // merge near-duplicates down to this many; 0 = keep every blade
+    bool keepFlagged = false;  // also model blades the segmenter flagged (overlap, curl, ...)
+    std::filesystem::path debugDir;  // overlay PNG per segmentation when not empty
+};
+
+struct CaptureSummary {
+    int framesRead = 0;
+    int segmentations = 0;
+    int bladesFound = 0;
+    int bladesModelled = 0;
+    std::vector<std::string> notes;  // one line per skipped blade or empty segmentation
+};
+
+struct CaptureResult {
+    ArchetypeLibrary library;
+    CaptureSummary summary;
+};
+
+using CaptureProgress = std::function<void(int framesDone, int framesTotal)>;
+
+// Throws ModelingError when no blade could be modelled (the message carries the reasons), and
+// the source's CaptureError for unreadable input.
+CaptureResult captureArchetypes(capture::DepthSource& source, const std::string& sourceName,
+                                const CaptureOptions& options,
+                                const CaptureProgress& progress = {});
+
+}  // namespace meadow::modeling

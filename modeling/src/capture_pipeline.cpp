@@ -1,0 +1,116 @@
+#include "meadow/modeling/capture_pipeline.h"
+
+#include <algorithm>
+#include <cstdio>
+
+#include "meadow/modeling/archetype_merge.h"
+#include "meadow/modeling/error.h"
+
+namespace meadow::modeling {
+
+namespace {
+
+// Flags after which a blade's contour does not describe one whole blade: the fit would model
+// something that is not there. Asymmetry is not among them: the fit measures and records it.
+bool disqualifies(capture::BladeFlag flag) {
+    switch (flag) {
+        case capture::BladeFlag::Overlapping:
+        case capture::BladeFlag::CurlsSideways:
+        case capture::BladeFlag::TooThin:
+        case capture::BladeFlag::BaseHidden:
+        case capture::BladeFlag::Truncated:
+            return true;
+        case capture::BladeFlag::Asymmetric:
+            return false;
+    }
+    return true;
+}
+
+std::string joined(const std::vector<std::string>& lines) {
+    std::string out;
+    for (const auto& l : lines) out += (out.empty() ? "" : "; ") + l;
+    return out;
+}
+
+std::string frameName(int index) {
+    char name[32];
+    std::snprintf(name, sizeof name, "frame_%06d.png", index);
+    return name;
+}
+
+}  // namespace
+
+CaptureResult captureArchetypes(capture::DepthSource& source, const std::string& sourceName,
+                                const CaptureOptions& options, const CaptureProgress& progress) {
+    if (options.fusionFrames < 1)
+        throw std::invalid_argument("captureArchetypes: fusionFrames must be >= 1");
+    const capture::Segmenter segmenter(options.segmenter);
+    CaptureResult result;
+    result.library.generator = "meadow capture 0.1.0";
+    result.library.source = sourceName;
+    CaptureSummary& summary = result.summary;
+
+    int total = source.info().frameCount;
+    if (options.maxFrames > 0)
+        total = total > 0 ? std::min(total, options.maxFrames) : options.maxFrames;
+
+    std::vector<capture::DepthFrame> group;
+    const auto processGroup = [&] {
+        if (group.empty()) return;
+        const capture::Segmentation seg = segmenter.segment(group);
+        ++summary.segmentations;
+        const int frameIndex = group.front().index;
+        if (!options.debugDir.empty())
+            capture::writeDebugOverlay(options.debugDir / frameName(frameIndex), group.front(),
+                                       seg);
+        if (seg.empty())
+            summary.notes.push_back("frame " + std::to_string(frameIndex) + ": no blades (" +
+                                    seg.noBladesReason + ")");
+        // The fit reads depth from one frame: the group's median when fused would be better,
+        // but the first frame keeps each archetype traceable to a recorded frame.
+        const capture::DepthFrame& depthFrame = group.front();
+        for (const capture::BladeContour& blade : seg.blades) {
+            ++summary.bladesFound;
+            const std::string where =
+                "frame " + std::to_string(frameIndex) + " blade " + std::to_string(blade.id);
+            const bool flagged = std::any_of(blade.flags.begin(), blade.flags.end(), disqualifies);
+            if (flagged && !options.keepFlagged) {
+                summary.notes.push_back(where + " skipped: " + joined(blade.reasons));
+                continue;
+            }
+            try {
+                BladeFit fit =
+                    fitBlade(blade, depthFrame, options.fit, {sourceName, frameIndex, blade.id});
+                fit.archetype.name =
+                    "f" + std::to_string(frameIndex) + "-b" + std::to_string(blade.id);
+                result.library.archetypes.push_back(std::move(fit.archetype));
+                ++summary.bladesModelled;
+            } catch (const ModelingError& e) {
+                summary.notes.push_back(where + " not modelled: " + e.what());
+            }
+        }
+        group.clear();
+    };
+
+    while (total <= 0 || summary.framesRead < total) {
+        auto frame = source.next();
+        if (!frame) break;
+        ++summary.framesRead;
+        group.push_back(std::move(*frame));
+        if (static_cast<int>(group.size()) == options.fusionFrames) processGroup();
+        if (progress) progress(summary.framesRead, std::max(total, summary.framesRead));
+    }
+    processGroup();
+
+    if (summary.framesRead == 0) throw ModelingError("capture: " + sourceName + " has no frames");
+    if (result.library.archetypes.empty())
+        throw ModelingError(
+            "capture: no blade of " + sourceName + " could be modelled (" +
+            std::to_string(summary.bladesFound) + " found" +
+            (summary.notes.empty() ? "" : ": " + joined(summary.notes)) +
+            "); check the depth band (--near/--far) or use --debug DIR to see the masks");
+    if (options.maxArchetypes > 0) mergeNearDuplicates(result.library, options.maxArchetypes);
+    return result;
+}
+
+}  // namespace meadow::modeling

@@ -1,0 +1,19 @@
+#!/usr/bin/env bash
+# The main job on the bundled sample: capture a recording into an archetype library, plant it on
+# the bundled terrain, render the meadow. Called by `./meadow.sh demo` with the meadow binary.
+#   samples/demo.sh MEADOW_BINARY [OUT_DIR]     (OUT_DIR defaults to out/demo)
+set -euo pipefail
+meadow=$1
+here=$(cd "$(dirname "$0")" && pwd)
+out=${2:-$here/../out/demo}
+mkdir -p "$out"
+recording=$here/recordings/quadratic-leaf
+
+echo "1/2 capture: $recording -> $out/library.json (+ .glb)"
+"$meadow" capture "$recording" --out "$out/library.json" --glb "$out/library.glb" --debug "$out/debug"
+
+echo "2/2 render: samples/scenes/meadow.json with that library -> $out/render/"
+"$meadow" render "$here/scenes/meadow.json" --library "$out/library.json" --out "$out/render" \
+  --frames 1 --size 1280x720
+
+echo "done: the meadow is $out/render/frame_000000.png"
