@@ -54,7 +54,11 @@ void applyLateralNoise(EdgeState& state, float sigma_px, std::uint64_t seed) {
     const int reach_px = std::max(
         1, static_cast<int>(std::ceil(std::min(kLateralReachSigmas * sigma_px, reachLimit_px))));
     cv::Mat1b band;
-    cv::dilate(depthDiscontinuities(state.surface_m), band,
+    // Edges of what is read as well as of what is there: the borders of projector shadows and
+    // grazing dropouts are as ragged on a real sensor as silhouettes are.
+    const cv::Mat1b edges =
+        depthDiscontinuities(state.surface_m) | depthDiscontinuities(state.reading_m);
+    cv::dilate(edges, band,
                cv::getStructuringElement(cv::MORPH_RECT, {2 * reach_px + 1, 2 * reach_px + 1}));
     // Read from copies: every pixel samples the undisplaced image, whatever the loop order.
     const EdgeState source{state.surface_m.clone(), state.reading_m.clone(),

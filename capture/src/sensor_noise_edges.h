@@ -24,7 +24,8 @@ struct EdgeState {
 };
 
 // Lateral noise, Nguyen, Izadi & Lovell 2012, Sec. 3 (sigma_L ~ 0.8 px at an edge): every
-// pixel within 3 sigma of a discontinuity reports what the pixel displaced by
+// pixel within 3 sigma of a discontinuity (of the surfaces, or of the readings, so shadow and
+// dropout borders too) reports what the pixel displaced by
 // (round(N(0, sigma)), round(N(0, sigma))) sees, so silhouettes become ragged by ~sigma.
 void applyLateralNoise(EdgeState& state, float sigma_px, std::uint64_t seed);
 
