@@ -1,0 +1,84 @@
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <opencv2/imgcodecs.hpp>
+
+#include "cli/cli_test_util.h"
+#include "meadow/capture/recording.h"
+#include "meadow/modeling/archetype_library.h"
+
+namespace fs = std::filesystem;
+using meadow::test::countLines;
+using meadow::test::freshTempDir;
+using meadow::test::runMeadow;
+
+namespace {
+
+// A recording of frames that all read "no data": a valid recording with nothing in it.
+fs::path writeAllZeroRecording(const fs::path& dir) {
+    meadow::capture::RecordingInfo info;
+    info.sensor = "test";
+    meadow::capture::RecordingWriter writer(dir, info);
+    for (int i = 0; i < 2; ++i) writer.write(cv::Mat1w::zeros(480, 640));
+    writer.finish();
+    return dir;
+}
+
+}  // namespace
+
+TEST(CaptureCli, SynthesisedTuftBecomesALibraryThatLoads) {
+    const fs::path dir = freshTempDir("capture_ok");
+    ASSERT_EQ(runMeadow("synth --preset quadratic-leaf --frames 3 --out " + (dir / "rec").string())
+                  .exitCode,
+              0);
+    const auto r = runMeadow("capture " + (dir / "rec").string() + " --out " +
+                             (dir / "lib.json").string() + " --glb " + (dir / "lib.glb").string());
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    const auto lib = meadow::modeling::loadArchetypeLibrary(dir / "lib.json");
+    EXPECT_GE(lib.archetypes.size(), 1u);
+    EXPECT_GT(fs::file_size(dir / "lib.glb"), 1000u);
+    EXPECT_NE(r.output.find("archetype(s)"), std::string::npos) << r.output;
+}
+
+TEST(CaptureCli, MissingSourceIsOneClearLineAndANonZeroExit) {
+    const fs::path dir = freshTempDir("capture_missing");
+    const auto r = runMeadow("capture /nonexistent/recording --out " + (dir / "lib.json").string());
+    EXPECT_NE(r.exitCode, 0);
+    EXPECT_EQ(countLines(r.output), 1) << r.output;
+    EXPECT_NE(r.output.find("/nonexistent/recording"), std::string::npos) << r.output;
+    EXPECT_FALSE(fs::exists(dir / "lib.json"));
+}
+
+TEST(CaptureCli, AllZeroFramesSayNoBladesAndKeepThePreviousLibrary) {
+    const fs::path dir = freshTempDir("capture_zero");
+    const fs::path rec = writeAllZeroRecording(dir / "rec");
+    { std::ofstream(dir / "lib.json") << "previous library"; }
+    const auto r = runMeadow("capture " + rec.string() + " --out " + (dir / "lib.json").string());
+    EXPECT_EQ(r.exitCode, 2) << r.output;
+    EXPECT_NE(r.output.find("no blade"), std::string::npos) << r.output;
+    std::ifstream in(dir / "lib.json");
+    std::string kept((std::istreambuf_iterator<char>(in)), {});
+    EXPECT_EQ(kept, "previous library") << "a failed capture must not touch an existing library";
+}
+
+TEST(CaptureCli, CorruptFrameNamesTheFile) {
+    const fs::path dir = freshTempDir("capture_corrupt");
+    const fs::path rec = writeAllZeroRecording(dir / "rec");
+    {
+        std::ofstream(rec / "depth" / "000001.png", std::ios::trunc)
+            << "\x89PNG\r\n\x1a\n truncated";
+    }
+    const auto r =
+        runMeadow("capture " + rec.string() + " --fuse 1 --out " + (dir / "lib.json").string());
+    EXPECT_EQ(r.exitCode, 2) << r.output;
+    EXPECT_NE(r.output.find("000001.png"), std::string::npos) << r.output;
+}
+
+TEST(CaptureCli, HelpExplainsTheOptionsAndDefaults) {
+    const auto r = runMeadow("capture --help");
+    EXPECT_EQ(r.exitCode, 0);
+    for (const char* option :
+         {"--out", "--glb", "--debug", "--fuse", "--max-archetypes", "--tolerance-mm", "--plane"})
+        EXPECT_NE(r.output.find(option), std::string::npos) << option << " missing from:\n"
+                                                            << r.output;
+}
