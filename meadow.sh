@@ -16,7 +16,6 @@ packages=(
   nlohmann-json3-dev libcli11-dev
   libegl-dev libgl-dev libegl-mesa0 libgl1-mesa-dri
   libgtest-dev libgmock-dev libbenchmark-dev
-  nodejs npm
 )
 
 install_missing() {
@@ -24,6 +23,10 @@ install_missing() {
   for p in "${packages[@]}"; do
     dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "ok installed" || missing+=("$p")
   done
+  # node and npm run the glTF validator. Checked as commands, not packages: a machine may have
+  # them from another source (nodesource's nodejs bundles npm and conflicts with Debian's npm).
+  command -v node >/dev/null 2>&1 || missing+=(nodejs)
+  command -v npm >/dev/null 2>&1 || missing+=(npm)
   if ((${#missing[@]})); then
     echo "meadow.sh: installing ${#missing[@]} missing package(s): ${missing[*]}"
     local sudo=""
