@@ -14,7 +14,7 @@ packages=(
   build-essential cmake ninja-build pkg-config git
   libopencv-dev libopenni2-dev libpcl-dev libeigen3-dev libglm-dev libtinygltf-dev
   nlohmann-json3-dev libcli11-dev
-  libegl-dev libgl-dev libegl-mesa0 libgl1-mesa-dri
+  libegl-dev libgl-dev libopengl-dev libegl-mesa0 libgl1-mesa-dri
   libgtest-dev libgmock-dev libbenchmark-dev
 )
 
