@@ -23,7 +23,7 @@ struct EdgeState {
     cv::Mat1f incidence_rad;
 };
 
-// Lateral noise, Nguyen, Izadi & Lovell 2012, Sec. 3 (sigma_L ~ 0.8 px at an edge): every
+// Lateral noise, Nguyen, Izadi & Lovell 2012, lateral model (sigma_L ~ 0.8 px at an edge): every
 // pixel within 3 sigma of a discontinuity (of the surfaces, or of the readings, so shadow and
 // dropout borders too) reports what the pixel displaced by
 // (round(N(0, sigma)), round(N(0, sigma))) sees, so silhouettes become ragged by ~sigma.
