@@ -34,6 +34,8 @@ BladeFrame bladeLocalFrame(const QuadraticBezier& spine, const glm::vec3& across
     if (glm::length(x) < kDegenerateFraction) x = perpendicular(glm::vec3(1.f, 0.f, 0.f));
     if (glm::length(x) < kDegenerateFraction) x = perpendicular(glm::vec3(0.f, 0.f, 1.f));
     x = glm::normalize(x);
+    // A nearly straight spine took X from a hint: still point it toward the tip's side.
+    if (glm::dot(x, chord) < 0.f) x = -x;
     const glm::vec3 z = glm::cross(x, y);
     BladeFrame frame;
     frame.origin_m = spine.v0;

@@ -30,9 +30,10 @@ glm::vec3 leastSquaresMiddleControlPoint(const std::vector<glm::vec3>& points,
                                          const std::vector<float>& t, const glm::vec3& v0,
                                          const glm::vec3& v2);
 // Fits a quadratic Bezier with v0 = points.front() and v2 = points.back(): chord-length
-// parameters, then alternately the closed-form v1 and one Newton step per point on
-// f(t) = (B(t) - P) . B'(t) (parameter correction, Hoschek 1988). Requires >= 3 points.
-SpineFit fitQuadraticBezier(const std::vector<glm::vec3>& points_m, int iterations = 25);
+// parameters and the closed-form v1, then alternately Newton steps per point on
+// f(t) = (B(t) - P) . B'(t) (parameter correction, Hoschek 1988) and a tangent-distance
+// update of v1 (see blade_fit_spine.cpp). Requires >= 3 points.
+SpineFit fitQuadraticBezier(const std::vector<glm::vec3>& points_m, int iterations = 20);
 
 // ---- Blade-local frame (blade_fit_frame.cpp) ------------------------------------------------
 // local = localFromCamera * (camera - origin_m). +Y along the spine's base tangent, +X toward the
@@ -74,7 +75,7 @@ ShapeFit nearestAnalyticShape(const WidthProfile& profile);
 // ---- The whole fit (blade_fit.cpp) --------------------------------------------------------
 struct BladeFitParams {
     SkeletonParams skeleton;
-    int spineIterations = 25;
+    int spineIterations = 20;
     // Width profile: `widthSamples` values, or, when widthTolerance_m > 0, the fewest (>= 2, <=
     // widthSamples) whose mean absolute error against the measured widths is within tolerance.
     int widthSamples = 16;

@@ -67,10 +67,9 @@ Skeleton matchSymmetricContour(const capture::BladeContour& blade,
 Skeleton extractSkeleton(const capture::BladeContour& blade, const capture::DepthFrame& frame,
                          const SkeletonParams& params = {});
 
-// Independent width check (width_check.cpp): from the Euclidean distance transform (DT) of the
-// blade mask, sampled bilinearly at each midline point, in pixels. For a blade w pixels wide the
-// DT at the centre is about (w + 1) / 2 (pixel centre to the first background pixel centre), so
-// this returns 2 DT - 1, comparable with Skeleton::width_px (boundary distance + 1 pixel).
+// Independent width check (width_check.cpp): twice the Euclidean distance transform (DT) of the
+// blade mask, sampled bilinearly at each midline point, in pixels; comparable with
+// Skeleton::width_px (boundary distance + 1 pixel) within about half a pixel (see the file).
 std::vector<float> distanceTransformWidth_px(const cv::Mat1b& mask,
                                              const std::vector<glm::vec2>& midline_px);
 

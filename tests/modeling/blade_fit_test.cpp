@@ -1,0 +1,140 @@
+// Spine, frame, width profile and shape fits; whole-blade fit on synthetic truth.
+#include "meadow/modeling/blade_fit.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <glm/geometric.hpp>
+
+#include "modeling/blade_fit_synthetic_test.h"
+
+namespace meadow::modeling {
+namespace {
+
+using test::fineIntrinsics;
+using test::makeBlade;
+using test::renderBlade;
+
+const QuadraticBezier kCurve{{0.f, 0.f, 0.f}, {0.01f, 0.06f, 0.002f}, {0.05f, 0.1f, 0.f}};
+
+TEST(BladeFit, MiddleControlPointClosedFormIsExactForExactParameters) {
+    std::vector<glm::vec3> pts;
+    std::vector<float> t;
+    for (int i = 0; i <= 10; ++i) t.push_back(i / 10.f), pts.push_back(kCurve.at(i / 10.f));
+    const glm::vec3 v1 = leastSquaresMiddleControlPoint(pts, t, kCurve.v0, kCurve.v2);
+    EXPECT_LT(glm::distance(v1, kCurve.v1), 1e-6f);
+}
+
+TEST(BladeFit, NewtonReparameterisationRecoversCurveFromUnevenSamples) {
+    std::vector<glm::vec3> pts;
+    for (int i = 0; i <= 40; ++i) {
+        const float u = i / 40.f;
+        pts.push_back(
+            kCurve.at(u * u * (3.f - 2.f * u)));  // uneven spacing: chord params are wrong
+    }
+    const SpineFit fit = fitQuadraticBezier(pts);
+    EXPECT_LT(glm::distance(fit.spine_m.v1, kCurve.v1), 2e-5f)
+        << "v1 " << fit.spine_m.v1.x << "," << fit.spine_m.v1.y;
+    EXPECT_LT(fit.rms_m, 1e-5f);
+    EXPECT_THROW(fitQuadraticBezier({{0, 0, 0}, {1, 0, 0}}), std::invalid_argument);
+}
+
+TEST(BladeFit, LocalFrameHasRootAtOriginBaseTangentAlongYAndBendTowardPlusX) {
+    // Camera-space blade growing up the image (-y) and bending toward -x.
+    const QuadraticBezier cam{{0.1f, 0.1f, 0.6f}, {0.1f, 0.04f, 0.6f}, {0.06f, 0.0f, 0.61f}};
+    const BladeFrame f = bladeLocalFrame(cam, {1.f, 0.f, 0.f});
+    const glm::vec3 v0 = f.toLocal(cam.v0), v1 = f.toLocal(cam.v1), v2 = f.toLocal(cam.v2);
+    EXPECT_LT(glm::length(v0), 1e-6f);
+    EXPECT_NEAR(v1.x, 0.f, 1e-6f);
+    EXPECT_NEAR(v1.z, 0.f, 1e-6f);
+    EXPECT_GT(v1.y, 0.f);
+    EXPECT_GT(v2.x, 0.f);
+    EXPECT_NEAR(v2.z, 0.f, 1e-6f);
+    const QuadraticBezier local{v0, v1, v2};
+    EXPECT_NEAR(local.length(), cam.length(), 1e-6f);
+    EXPECT_LT(glm::distance(f.toCamera(v2), cam.v2), 1e-6f);
+}
+
+TEST(BladeFit, WidthProfileReproducesPiecewiseLinearWidthAndToleranceTakesFewestSamples) {
+    std::vector<float> s, w;
+    for (int i = 0; i <= 200; ++i) s.push_back(i / 200.f), w.push_back(0.004f * (1.f - s.back()));
+    const WidthProfile p16 = fitWidthProfile(s, w, 16);
+    ASSERT_EQ(p16.width_m.size(), 16u);
+    EXPECT_LT(widthProfileMae_m(p16, s, w), 1e-6f);
+    const WidthProfile p2 = fitWidthProfile(s, w, 2);
+    EXPECT_NEAR(p2.width_m[0], 0.004f, 1e-6f);
+    EXPECT_NEAR(p2.width_m[1], 0.f, 1e-6f);
+    EXPECT_THROW(fitWidthProfile(s, w, 1), std::invalid_argument);
+}
+
+TEST(BladeFit, NearestAnalyticShapeRecognisesEachShapeAndTau) {
+    struct Case {
+        AnalyticShape shape;
+        float tau;
+    };
+    for (const Case c :
+         {Case{AnalyticShape::Quad, 0.5f}, Case{AnalyticShape::Triangle, 0.5f},
+          Case{AnalyticShape::Quadratic, 0.5f}, Case{AnalyticShape::TriangleTip, 0.7f}}) {
+        WidthProfile p;
+        for (int i = 0; i < 21; ++i)
+            p.width_m.push_back(0.005f * analyticShapeWidthFraction(c.shape, i / 20.f, c.tau));
+        const ShapeFit fit = nearestAnalyticShape(p);
+        EXPECT_EQ(fit.shape, c.shape) << "shape " << static_cast<int>(c.shape);
+        EXPECT_NEAR(fit.baseWidth_m, 0.005f, 1e-6f);
+        EXPECT_LT(fit.error_m, 1e-7f);
+        if (c.shape == AnalyticShape::TriangleTip) {
+            EXPECT_NEAR(fit.tau, c.tau, 0.011f);
+        }
+    }
+}
+
+TEST(BladeFit, RecoversSyntheticBladeTipHeightAndWidthWithoutNoise) {
+    for (const float bend : {0.f, 0.3f, 0.6f}) {
+        const auto truth = makeBlade({0.02f, 0.09f, 0.5f}, 0.12f, bend, 0.006f, 0.2f);
+        const auto view = renderBlade(truth, fineIntrinsics(), 0.9f);
+        const BladeFit fit = fitBlade(view.blade, view.frame, {},
+                                      {.recording = "synthetic", .frame = 3, .bladeId = 7});
+        const Archetype& a = fit.archetype;
+        const float tipError_mm = glm::distance(fit.spineCamera_m.v2, truth.spine_m.v2) * 1e3f;
+        const float heightError =
+            std::abs(a.height_m() - truth.spine_m.length()) / truth.spine_m.length();
+        double widthSum = 0.0;
+        for (int i = 0; i <= 100; ++i)
+            widthSum += std::abs(a.width.at(i / 100.f) - truth.width(i / 100.f));
+        const float widthMae = static_cast<float>(widthSum / 101.0);
+        EXPECT_LE(tipError_mm, 1.f) << "bend " << bend;
+        EXPECT_LE(heightError, 0.01f) << "bend " << bend << " height " << a.height_m();
+        EXPECT_LE(widthMae, 0.1f * truth.maxWidth_m)
+            << "bend " << bend << " width MAE " << widthMae * 1e3f << " mm";
+        // Local frame and report.
+        EXPECT_LT(glm::length(a.spine_m.v0), 1e-7f);
+        EXPECT_GE(a.spine_m.v2.x, 0.f);
+        EXPECT_GT(a.spine_m.v2.y, 0.f);
+        EXPECT_LT(a.fit.spineRms_mm, 0.3f) << "bend " << bend;
+        EXPECT_GT(a.fit.skeletonPoints, 100);
+        EXPECT_FALSE(a.fit.asymmetric);
+        EXPECT_LT(a.fit.widthCheckMae_mm, 0.1f * truth.maxWidth_m * 1e3f);
+        EXPECT_EQ(a.width.width_m.size(), 16u);
+        ASSERT_EQ(a.knots_m.size(), 16u);
+        EXPECT_LT(glm::length(a.knots_m.front()), 1e-3f);
+        EXPECT_LT(glm::distance(a.knots_m.back(), a.spine_m.v2), 1e-3f);
+        EXPECT_EQ(a.source.recording, "synthetic");
+        EXPECT_EQ(a.source.frame, 3);
+        EXPECT_EQ(a.source.bladeId, 7);
+        EXPECT_EQ(a.nearestShape, AnalyticShape::Quadratic) << "bend " << bend;  // 1 - 0.85 s^2
+    }
+}
+
+TEST(BladeFit, WidthToleranceGivesFewerSamplesForSimpleShape) {
+    const auto truth = makeBlade({0.f, 0.09f, 0.5f}, 0.12f, 0.2f, 0.006f);
+    const auto view = renderBlade(truth, fineIntrinsics());
+    BladeFitParams params;
+    params.widthTolerance_m = 0.2e-3f;
+    const BladeFit fit = fitBlade(view.blade, view.frame, params);
+    EXPECT_LT(fit.archetype.width.width_m.size(), 16u);
+    EXPECT_GE(fit.archetype.width.width_m.size(), 2u);
+    EXPECT_LE(fit.archetype.fit.widthMae_mm, 0.2f);
+}
+
+}  // namespace
+}  // namespace meadow::modeling
