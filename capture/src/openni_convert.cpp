@@ -1,0 +1,215 @@
+#include "openni_convert.h"
+
+#include <OpenNI.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <climits>
+#include <iterator>
+#include <opencv2/core.hpp>
+#include <string>
+#include <system_error>
+#include <thread>
+
+#include "meadow/capture/depth_source.h"
+#include "meadow/capture/error.h"
+#include "meadow/capture/recording.h"
+#include "openni_runtime.h"
+#include "openni_source.h"
+
+namespace meadow::capture::ni {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+// A served recording hands over a frame within milliseconds of being asked.
+constexpr int kFrameTimeout_ms = 5000;
+// openni::Recorder's 16z codec stores depth strictly below the stream's maximum (65535).
+constexpr double kLargestStorableDepth_mm = 65534;
+// Pauses between starting openni::Recorder and the first frame, one per try (see recordOnce).
+constexpr std::chrono::milliseconds kRecorderStartups[] = {std::chrono::milliseconds(100),
+                                                           std::chrono::milliseconds(500),
+                                                           std::chrono::milliseconds(2000)};
+
+// "<path>.tmp.<pid><suffix>" beside `path`; removed on destruction unless released.
+class Temporary {
+public:
+    Temporary(const fs::path& path, const std::string& suffix) {
+        path_ = path;
+        path_ += ".tmp." + std::to_string(::getpid()) + suffix;
+    }
+    Temporary(const Temporary&) = delete;
+    Temporary& operator=(const Temporary&) = delete;
+    ~Temporary() {
+        if (path_.empty()) return;
+        std::error_code ignored;
+        fs::remove_all(path_, ignored);
+    }
+    [[nodiscard]] const fs::path& path() const { return path_; }
+    // Renames the temporary over `target`; it is then no longer removed.
+    void commitTo(const fs::path& target) {
+        std::error_code ec;
+        fs::rename(path_, target, ec);
+        if (ec)
+            throw CaptureError("cannot rename " + path_.string() + " to " + target.string() + " (" +
+                               ec.message() + "): check permissions on the folder");
+        path_.clear();
+    }
+
+private:
+    fs::path path_;
+};
+
+void createParentFolder(const fs::path& path) {
+    const fs::path parent = path.parent_path();
+    if (parent.empty()) return;
+    std::error_code ec;
+    fs::create_directories(parent, ec);
+    if (ec)
+        throw CaptureError("cannot create folder " + parent.string() + " (" + ec.message() +
+                           "): check the path and permissions");
+}
+
+// Frames an .oni file says it holds, or -1 when it cannot be opened or does not say.
+int framesInOniFile(const fs::path& oniPath) {
+    ::openni::Device device;
+    if (device.open(oniPath.c_str()) != ::openni::STATUS_OK) return -1;
+    ::openni::VideoStream stream;
+    if (stream.create(device, ::openni::SENSOR_DEPTH) != ::openni::STATUS_OK) return -1;
+    ::openni::PlaybackControl* playback = device.getPlaybackControl();
+    return playback == nullptr ? -1 : playback->getNumberOfFrames(stream);
+}
+
+// Serves `uri` through meadow's driver into a fresh .oni file at `oniPath`; returns the frames
+// the finished file holds.
+int recordOnce(const std::string& uri, const fs::path& oniPath, const RecordingInfo& info,
+               std::chrono::milliseconds recorderStartup, const FrameProgress& progress) {
+    {
+        ::openni::Device device;
+        if (device.open(uri.c_str()) != ::openni::STATUS_OK)
+            throw CaptureError("meadow's OpenNI2 driver cannot serve " + uri + " (" + lastError() +
+                               "): check the recording's recording.json and depth/ PNGs");
+        ::openni::VideoStream stream;
+        if (stream.create(device, ::openni::SENSOR_DEPTH) != ::openni::STATUS_OK)
+            throw CaptureError("meadow's OpenNI2 driver gave no depth stream for " + uri + " (" +
+                               lastError() + ")");
+        ::openni::Recorder recorder;
+        if (recorder.create(oniPath.c_str()) != ::openni::STATUS_OK)
+            throw CaptureError("cannot write " + oniPath.string() + " (" + lastError() +
+                               "): check the folder exists and is writable");
+        if (recorder.attach(stream, /*allowLossyCompression=*/false) != ::openni::STATUS_OK ||
+            recorder.start() != ::openni::STATUS_OK)
+            throw CaptureError("OpenNI2's recorder refused the depth stream of " + uri + " (" +
+                               lastError() + ")");
+        // openni::Recorder starts on its own thread and silently drops frames that arrive
+        // before it has; there is no way to ask whether it has, so give it time (the caller
+        // checks the result and tries again with more).
+        std::this_thread::sleep_for(recorderStartup);
+        if (stream.start() != ::openni::STATUS_OK)
+            throw CaptureError("meadow's OpenNI2 driver cannot start " + uri + " (" + lastError() +
+                               ")");
+
+        // The recorder keeps every frame the driver sends; reading them here is what asks the
+        // driver for the next one (it serves frames on demand) and checks what goes in.
+        ::openni::VideoStream* streams[] = {&stream};
+        for (int i = 0; i < info.frameCount; ++i) {
+            int ready = -1;
+            if (::openni::OpenNI::waitForAnyStream(streams, 1, &ready, kFrameTimeout_ms) !=
+                ::openni::STATUS_OK)
+                throw CaptureError("meadow's OpenNI2 driver stopped at frame " + std::to_string(i) +
+                                   " of " + std::to_string(info.frameCount) + " of " + uri + " (" +
+                                   lastError() + "): check that frame's PNG in depth/");
+            ::openni::VideoFrameRef frame;
+            if (stream.readFrame(&frame) != ::openni::STATUS_OK)
+                throw CaptureError("reading frame " + std::to_string(i) + " of " + uri +
+                                   " through OpenNI2 failed (" + lastError() + ")");
+            const cv::Mat1w depth_mm(
+                frame.getHeight(), frame.getWidth(),
+                static_cast<std::uint16_t*>(const_cast<void*>(frame.getData())),
+                static_cast<std::size_t>(frame.getStrideInBytes()));
+            double largest_mm = 0;
+            cv::minMaxLoc(depth_mm, nullptr, &largest_mm);
+            if (largest_mm > kLargestStorableDepth_mm)
+                throw CaptureError("frame " + std::to_string(i) + " of " + uri +
+                                   " holds depth 65535 mm, which an .oni file cannot store: "
+                                   "set such pixels to 0 (no reading) first");
+            if (progress) progress(i + 1, info.frameCount);
+        }
+        recorder.stop();
+        stream.stop();
+        // Destroying the recorder writes the frame index and end record: the file is complete.
+        recorder.destroy();
+    }
+    return framesInOniFile(oniPath);
+}
+
+}  // namespace
+
+int recordingToOni(const fs::path& recordingFolder, const fs::path& oniPath,
+                   const FrameProgress& progress) {
+    const RecordingInfo info = readRecordingInfo(recordingFolder);  // checks it, names problems
+    auto runtime = Runtime::acquire();
+    if (!meadowDriverInstalled())
+        throw CaptureError("cannot serve " + recordingFolder.string() +
+                           " to OpenNI2: meadow's driver " + kMeadowDriverFileName + " is not in " +
+                           driverFolder().string() + "; " + howToLoadMeadowDriver());
+
+    std::error_code ec;
+    const fs::path folder = fs::absolute(recordingFolder, ec).lexically_normal();
+    std::string uri = folder.string();
+    if (uri.size() > 1 && uri.back() == '/') uri.pop_back();
+    createParentFolder(oniPath);
+    int written = -1;
+    for (const auto startup : kRecorderStartups) {
+        Temporary tmp(oniPath, ".oni");
+        written = recordOnce(uri, tmp.path(), info, startup, progress);
+        if (written == info.frameCount) {
+            tmp.commitTo(oniPath);
+            return written;
+        }
+    }
+    throw CaptureError("OpenNI2's recorder kept " + std::to_string(written) + " of " +
+                       std::to_string(info.frameCount) + " frames of " + uri + " in " +
+                       std::to_string(std::size(kRecorderStartups)) +
+                       " tries; nothing was written to " + oniPath.string() +
+                       ": try again on a less busy machine");
+}
+
+int oniToRecording(const fs::path& oniPath, const fs::path& folder, const FrameProgress& progress) {
+    std::error_code ec;
+    const bool replacing = fs::exists(folder, ec);
+    if (replacing && !fs::is_directory(folder, ec))
+        throw CaptureError(folder.string() + " exists and is not a folder: choose another output");
+    if (replacing && !fs::is_empty(folder, ec) &&
+        !fs::is_regular_file(folder / "recording.json", ec))
+        throw CaptureError(folder.string() +
+                           " exists and is not a meadow recording: choose an empty or new folder");
+
+    auto source = openOpenNiSource(oniPath.string());
+    createParentFolder(folder);
+    Temporary tmp(folder, "");
+    int written = 0;
+    {
+        RecordingWriter writer(tmp.path(), source->info());
+        while (auto frame = source->next()) {
+            writer.write(frame->depth_mm);
+            if (progress) progress(++written, source->info().frameCount);
+        }
+        if (writer.framesWritten() == 0)
+            throw CaptureError(oniPath.string() + " holds no depth frame: nothing to convert");
+        writer.finish();
+        written = writer.framesWritten();
+    }
+    if (replacing) {
+        // Only now, with the new recording complete, does the old one go.
+        fs::remove_all(folder, ec);
+        if (ec)
+            throw CaptureError("cannot replace " + folder.string() + " (" + ec.message() +
+                               "): check permissions on it and its parent folder");
+    }
+    tmp.commitTo(folder);
+    return written;
+}
+
+}  // namespace meadow::capture::ni
