@@ -98,7 +98,7 @@ uint cullBladeGeometric(BladeGpu blade, uint id, CullParamsGpu p) {
     vec3 cameraPosition = vec3(p.cameraPosition_m);
     uint tests = p.counts.y;
     if ((tests & CULL_TEST_ORIENTATION) != 0u &&
-        orientationCulled(cameraPosition, v0, bladeWidthDirection(up, blade.up_direction.w),
+        orientationCulled(cameraPosition, v0, bladeWidthAxis(up, blade.up_direction.w),
                           p.orientationFrustum.x))
         return CULL_TEST_ORIENTATION;
     if ((tests & CULL_TEST_FRUSTUM) != 0u &&

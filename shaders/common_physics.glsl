@@ -35,21 +35,23 @@ vec3 safeNormalize(vec3 v) {
     return l > kDirectionEpsilon_m ? v / l : vec3(0.0f);
 }
 
-// Blade width direction from up and the direction angle (rad) about up. The tangent frame at
-// angle 0 is Duff et al. 2017, "Building an Orthonormal Basis, Revisited" (branchless, continuous
-// except at up = -z): for up = +y, angle 0 gives +x and angle pi/2 gives -z.
-vec3 bladeWidthDirection(vec3 up, float angle) {
-    float signZ = up.z >= 0.0f ? 1.0f : -1.0f;
-    float a = -1.0f / (signZ + up.z);
-    float b = up.x * up.y * a;
-    vec3 b1 = vec3(1.0f + signZ * up.x * up.x * a, signZ * b, -signZ * up.x);
-    vec3 b2 = vec3(b, signZ + up.y * up.y * a, -up.y);
-    return cos(angle) * b1 + sin(angle) * b2;
+// The blade's width direction from up and its direction angle (rad) about up: the convention of
+// bladeWidthDirection() in common_blade.glsl (draw pass) and seeding.cpp, restated here in the
+// GLSL/C++ subset (common_blade.glsl has out parameters, so C++ cannot compile it);
+// culling_pass_GLTest.cpp holds the two against each other. Reference tangent: world +Z crossed
+// with up, or +X when up is within ~26 degrees of +-Z; the angle turns it about up.
+const float kReferenceAxisSwitchZ = 0.9f;
+vec3 bladeWidthAxis(vec3 up, float angle) {
+    vec3 axis = abs(up.z) < kReferenceAxisSwitchZ ? vec3(0.0f, 0.0f, 1.0f) : vec3(1.0f, 0.0f, 0.0f);
+    vec3 t = normalize(cross(up, axis));
+    vec3 b = cross(up, t);
+    return cos(angle) * t + sin(angle) * b;
 }
 
-// Front direction f: perpendicular to the blade's width and to up (the blade's facing normal).
+// Front direction f: perpendicular to the blade's width and to up (the blade's face normal, the
+// droop direction d = cross(w, up) of seeding.cpp).
 vec3 bladeFrontDirection(vec3 up, float angle) {
-    return safeNormalize(cross(bladeWidthDirection(up, angle), up));
+    return safeNormalize(cross(bladeWidthAxis(up, angle), up));
 }
 
 // Quadratic Bezier midpoint B(1/2) = v0/4 + v1/2 + v2/4 (Sec. 5.1, collision).

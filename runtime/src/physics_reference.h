@@ -31,7 +31,7 @@ float bezierLengthPaper(glm::vec3 v0, glm::vec3 v1, glm::vec3 v2);
 float projectedLength(glm::vec3 v0, glm::vec3 v2, glm::vec3 up);
 glm::vec3 middleControlPoint(glm::vec3 v0, glm::vec3 up, float h, float lproj);
 glm::vec3 tipAboveGround(glm::vec3 v0, glm::vec3 v2, glm::vec3 up);
-glm::vec3 bladeWidthDirection(glm::vec3 up, float angle);
+glm::vec3 bladeWidthAxis(glm::vec3 up, float angle);
 glm::vec3 bladeFrontDirection(glm::vec3 up, float angle);
 glm::vec3 sphereCollisionTranslation(glm::vec3 p, glm::vec4 sphere);
 }  // namespace shader

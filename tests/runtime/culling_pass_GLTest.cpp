@@ -3,9 +3,13 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <glm/geometric.hpp>
+#include <random>
+#include <string>
 #include <vector>
 
 #include "../../runtime/src/culling_pass.h"
+#include "../../runtime/src/shader_sources.h"
 #include "culling_test_scene.h"
 
 namespace meadow::runtime {
@@ -123,6 +127,56 @@ TEST(CullingPassGLTest, WithoutDepthTextureOcclusionIsOffAndMoreBladesThanCapaci
     EXPECT_THROW(
         pass.dispatch(blades, bladeCount + 1, patches, patchCount, camera, CullSettings{}, nullptr),
         std::invalid_argument);
+}
+
+// Orientation culling and front gravity use bladeWidthAxis() (common_physics.glsl, compiled as
+// C++ too); the draw pass builds the blade from bladeWidthDirection() (common_blade.glsl). Both
+// must give the same direction, or the wrong blades would be culled as edge-on.
+TEST(CullingPassGLTest, WidthAxisOfCullingMatchesTheDrawPassWidthDirectionOnTheGpu) {
+    GlContext context;
+    const std::string source =
+        "#version 450 core\n" + std::string(detail::shaderSource("common_blade.glsl")) +
+        "\nlayout(local_size_x = 64) in;\n"
+        "layout(std430, binding = 0) readonly buffer In { vec4 upAngle[]; };\n"
+        "layout(std430, binding = 1) writeonly buffer Out { vec4 width[]; };\n"
+        "void main() { uint i = gl_GlobalInvocationID.x;\n"
+        "  width[i] = vec4(bladeWidthDirection(upAngle[i].xyz, upAngle[i].w), 0.0); }\n";
+    gl::Shader shader = gl::Shader::create(GL_COMPUTE_SHADER);
+    const char* text = source.c_str();
+    glShaderSource(shader.id(), 1, &text, nullptr);
+    glCompileShader(shader.id());
+    GLint ok = 0;
+    glGetShaderiv(shader.id(), GL_COMPILE_STATUS, &ok);
+    ASSERT_TRUE(ok) << "common_blade.glsl did not compile on its own";
+    gl::Program program = gl::Program::create();
+    glAttachShader(program.id(), shader.id());
+    glLinkProgram(program.id());
+    glGetProgramiv(program.id(), GL_LINK_STATUS, &ok);
+    ASSERT_TRUE(ok);
+
+    std::mt19937 rng(3);
+    std::uniform_real_distribution<float> u(-1.f, 1.f);
+    std::vector<glm::vec4> upAngle = {{0, 1, 0, 0}, {0, 0, 1, 1}, {0, 0, -1, 2}, {1, 0, 0, 3}};
+    while (upAngle.size() < 1024) {
+        const glm::vec3 up{u(rng), u(rng), u(rng)};
+        if (glm::length(up) > 0.1f) upAngle.emplace_back(glm::normalize(up), 3.14159265f * u(rng));
+    }
+    const gl::Buffer in = upload(upAngle);
+    gl::Buffer out = gl::Buffer::create();
+    glNamedBufferStorage(out.id(), upAngle.size() * sizeof(glm::vec4), nullptr, 0);
+    glUseProgram(program.id());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, in.id());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, out.id());
+    glDispatchCompute(static_cast<GLuint>(upAngle.size() / 64), 1, 1);
+    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+    std::vector<glm::vec4> width(upAngle.size());
+    glGetNamedBufferSubData(out.id(), 0, width.size() * sizeof(glm::vec4), width.data());
+    for (std::size_t i = 0; i < upAngle.size(); ++i) {
+        const glm::vec3 cpu = shader::bladeWidthAxis(glm::vec3(upAngle[i]), upAngle[i].w);
+        EXPECT_LT(glm::distance(cpu, glm::vec3(width[i])), 1e-5f)
+            << "up " << upAngle[i].x << ',' << upAngle[i].y << ',' << upAngle[i].z << " angle "
+            << upAngle[i].w;
+    }
 }
 
 }  // namespace

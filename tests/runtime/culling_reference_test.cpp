@@ -38,8 +38,8 @@ CullSettings only(bool orientation, bool frustum, bool distance, bool occlusion)
 
 TEST(CullingReference, BladeSeenEdgeOnIsCulledByOrientationAndFaceOnIsKept) {
     const Camera cam;
-    // Width direction at angle 0 is +x (bladeWidthDirection); the camera looks along -z from +z.
-    // A blade at x = 3 seen from the camera: direction (3, 0, -5)/|.|, |dot with +x| = 0.51.
+    // Width direction at angle 0 is +x for up = +y (bladeWidthAxis); the camera looks along -z from
+    // +z. A blade at x = 3 seen from the camera: direction (3, 0, -5)/|.|, |dot with +x| = 0.51.
     std::vector<gpu::BladeGpu> blades = {uprightBlade({0.f, 0.f, 0.f}, 0.5f, 0.f),
                                          uprightBlade({0.f, 0.f, 0.f}, 0.5f, 1.5707963f)};
     std::vector<gpu::PatchGpu> patches = {patchOf(0, 2, {-1, 0, -1}, {1, 1, 1})};

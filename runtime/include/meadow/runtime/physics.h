@@ -13,13 +13,14 @@ struct PhysicsSettings {
     glm::vec3 gravityCenter_m{0.f, -6.371e6f, 0.f};  // the earth's centre below a +Y-up scene
     float gravityCenter_mps2 = 9.81f;
     float gravityCenterMix = 0.f;  // t: 0 = direction only, 1 = centre only
-    // The paper's mass m scales gravity against the per-blade stiffness s (1/s): a blade's tip
-    // settles about m g / s below its rest pose. 0.1 with s ~ 10 bends blades by ~10 cm.
-    float mass = 0.1f;
+    // The paper's mass m scales gravity against the per-blade stiffness s (1/s): front gravity
+    // (Eq. (4)) moves a blade's tip about m g / (4 s) over its front. 0.02 with the seeding's
+    // s ~ 0.6-1 gives 5-8 cm.
+    float mass = 0.02f;
 
     // Wind, Sec. 5.1: a directional travelling wave plus a point source (a fan, a helicopter).
     glm::vec3 windDirection{1.f, 0.f, 0.f};
-    float windWave_mps = 1.f;
+    float windWave_mps = 0.3f;  // reaches ~0.3 / s m of tip travel at full alignment
     glm::vec3 windSource_m{0.f, 0.f, 0.f};
     float windSource_mps = 0.f;
     float windWavelength_m = 4.f;
