@@ -16,6 +16,7 @@ packages=(
   nlohmann-json3-dev libcli11-dev
   libegl-dev libgl-dev libopengl-dev libegl-mesa0 libgl1-mesa-dri
   libgtest-dev libgmock-dev libbenchmark-dev
+  gnuplot-nox
 )
 
 install_missing() {
