@@ -4,6 +4,7 @@
 #   ./meadow.sh test   install what is missing, build, run the whole test suite (CTest)
 #   ./meadow.sh asan   the same suite under AddressSanitizer + UBSan
 #   ./meadow.sh build  install what is missing and build only
+#   ./meadow.sh deps   install what is missing, nothing else
 # Idempotent: packages already present are not touched; builds are incremental.
 set -euo pipefail
 cd "$(dirname "$0")"
@@ -53,9 +54,10 @@ build() {
 export XDG_RUNTIME_DIR=${XDG_RUNTIME_DIR:-/tmp}
 cmd=${1:-help}
 case "$cmd" in
+  deps)  install_missing ;;
   build) install_missing; build default ;;
   test)  install_missing; build default; ctest --preset default -j "$jobs" ;;
   asan)  install_missing; build asan; ctest --preset asan -j "$jobs" ;;
   demo)  install_missing; build default; shift; exec "$root/samples/demo.sh" "$root/build/default/cli/meadow" "$@" ;;
-  *) sed -n '2,7p' "$0"; [ "$cmd" = help ] || exit 2 ;;
+  *) sed -n '2,8p' "$0"; [ "$cmd" = help ] || exit 2 ;;
 esac
