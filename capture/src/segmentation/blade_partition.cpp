@@ -151,15 +151,14 @@ std::vector<BladeContour> partitionCluster(BladeCluster& cluster, const cv::Mat1
     cluster.cutIndices.clear();
     for (const auto& c : cuts) cluster.cutIndices.push_back(c.first);
 
-    // The cluster's own pixels: wedges are clipped to them.
+    // The cluster's own pixels, in its bounding box.
     const cv::Rect box = cv::boundingRect(contour);
-    cv::Mat1b region(mask.size(), std::uint8_t{0});
-    cv::drawContours(region, std::vector<std::vector<cv::Point>>{contour}, 0, 255, cv::FILLED);
-    region &= mask;
+    cv::Mat1b region(box.size(), std::uint8_t{0});
+    cv::drawContours(region, std::vector<std::vector<cv::Point>>{contour}, 0, 255, cv::FILLED,
+                     cv::LINE_8, cv::noArray(), 0, -box.tl());
+    region &= mask(box);
 
-    std::vector<BladeContour> blades;
-    const cv::Point reference(cvRound(cluster.reference_px.x), cvRound(cluster.reference_px.y));
-    int empty = 0;
+    std::vector<BladeContour> pieces;
     for (size_t k = 0; k < cuts.size(); ++k) {
         const int start = cuts[k].first;
         const int length =
@@ -167,28 +166,71 @@ std::vector<BladeContour> partitionCluster(BladeCluster& cluster, const cv::Mat1
         BladeContour blade;
         blade.contour_px.reserve(static_cast<size_t>(length) + 1);
         float best = -1.f;
-        for (int s = 0; s <= length && s < n + 1; ++s) {
+        for (int s = 0; s <= length && s < n; ++s) {  // one cut: the whole contour once
             const int i = wrap(start + s, n);
-            if (s == n) break;  // one cut: the whole contour once
             blade.contour_px.push_back(contour[static_cast<size_t>(i)]);
             if (d[static_cast<size_t>(i)] > best) {
                 best = d[static_cast<size_t>(i)];
                 blade.tipIndex = s;
             }
         }
-        // Mask: the wedge between the blade's contour and the reference point, within the
-        // cluster. The reference closes the polygon so a blade keeps its part of the shared base.
-        std::vector<cv::Point> polygon = blade.contour_px;
-        polygon.push_back(reference);
-        blade.mask = cv::Mat1b::zeros(mask.size());
-        cv::fillPoly(blade.mask, std::vector<std::vector<cv::Point>>{polygon}, 255);
-        cv::polylines(blade.mask, std::vector<std::vector<cv::Point>>{blade.contour_px}, false,
-                      255);
-        blade.mask &= region;
-        if (cv::countNonZero(blade.mask(box)) == 0) {
+        pieces.push_back(std::move(blade));
+    }
+
+    // Masks (in the box first).
+    std::vector<cv::Mat1b> boxMasks(pieces.size());
+    if (params.bladeMask == BladeMaskMethod::NearestContour) {
+        // Every cluster pixel goes to the blade whose contour piece is nearest: a Voronoi split
+        // of the cluster by contour pieces (cv::distanceTransform with per-pixel labels).
+        cv::Mat1b seeds(box.size(), std::uint8_t{255});
+        cv::Mat1i seedBlade(box.size(), 0);
+        for (size_t k = 0; k < pieces.size(); ++k)
+            for (const auto& p : pieces[k].contour_px) {
+                seeds(p - box.tl()) = 0;
+                seedBlade(p - box.tl()) = static_cast<int>(k) + 1;
+            }
+        // DIST_LABEL_PIXEL numbers the zero pixels 1, 2, ... in row-major order.
+        std::vector<int> bladeOfLabel{0};
+        for (int y = 0; y < seeds.rows; ++y)
+            for (int x = 0; x < seeds.cols; ++x)
+                if (seeds(y, x) == 0) bladeOfLabel.push_back(seedBlade(y, x));
+        cv::Mat1f dist;
+        cv::Mat1i labels;
+        cv::distanceTransform(seeds, dist, labels, cv::DIST_L2, cv::DIST_MASK_5,
+                              cv::DIST_LABEL_PIXEL);
+        for (auto& m : boxMasks) m = cv::Mat1b(box.size(), std::uint8_t{0});
+        for (int y = 0; y < region.rows; ++y)
+            for (int x = 0; x < region.cols; ++x) {
+                if (!region(y, x)) continue;
+                const int l = labels(y, x);
+                if (l <= 0 || l >= static_cast<int>(bladeOfLabel.size())) continue;
+                const int k = bladeOfLabel[static_cast<size_t>(l)] - 1;
+                if (k >= 0) boxMasks[static_cast<size_t>(k)](y, x) = 255;
+            }
+    } else {
+        // The wedge between the piece and the reference point, within the cluster.
+        const cv::Point reference(cvRound(cluster.reference_px.x) - box.x,
+                                  cvRound(cluster.reference_px.y) - box.y);
+        for (size_t k = 0; k < pieces.size(); ++k) {
+            std::vector<cv::Point> polygon;
+            for (const auto& p : pieces[k].contour_px) polygon.push_back(p - box.tl());
+            boxMasks[k] = cv::Mat1b(box.size(), std::uint8_t{0});
+            cv::polylines(boxMasks[k], std::vector<std::vector<cv::Point>>{polygon}, false, 255);
+            polygon.push_back(reference);
+            cv::fillPoly(boxMasks[k], std::vector<std::vector<cv::Point>>{polygon}, 255);
+            boxMasks[k] &= region;
+        }
+    }
+    std::vector<BladeContour> blades;
+    int empty = 0;
+    for (size_t k = 0; k < pieces.size(); ++k) {
+        if (cv::countNonZero(boxMasks[k]) == 0) {
             ++empty;
             continue;
         }
+        BladeContour blade = std::move(pieces[k]);
+        blade.mask = cv::Mat1b::zeros(mask.size());
+        boxMasks[k].copyTo(blade.mask(box));
         blade.id = firstId + static_cast<int>(blades.size());
         blades.push_back(std::move(blade));
     }

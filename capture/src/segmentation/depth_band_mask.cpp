@@ -15,6 +15,24 @@ namespace {
 // disparity quantisation leaves in the histogram of a structured-light sensor.
 constexpr int kSmoothHalfWidth_bins = 2;
 constexpr float kMaxHistogramDepth_m = 12.0f;
+// A depth mode present in more than this share of the image columns is scenery, not a tuft
+// (a tuft of 12 blades fills well under half the width at the presets' distances).
+constexpr float kSceneryColumnCoverage = 0.6f;
+
+// Share of image columns holding a masked pixel within [lo_mm, hi_mm).
+float columnCoverage(const cv::Mat1w& depth_mm, const cv::Mat1b& mask, float lo_mm, float hi_mm) {
+    std::vector<char> hit(static_cast<size_t>(depth_mm.cols), 0);
+    for (int y = 0; y < depth_mm.rows; ++y) {
+        const auto* d = depth_mm[y];
+        const auto* m = mask[y];
+        for (int x = 0; x < depth_mm.cols; ++x)
+            if (m[x] && d[x] != 0 && static_cast<float>(d[x]) >= lo_mm &&
+                static_cast<float>(d[x]) < hi_mm)
+                hit[static_cast<size_t>(x)] = 1;
+    }
+    return static_cast<float>(std::count(hit.begin(), hit.end(), 1)) /
+           static_cast<float>(depth_mm.cols);
+}
 
 std::string metres(float v) {
     std::ostringstream s;
@@ -73,6 +91,19 @@ DepthBand automaticDepthBand(const cv::Mat1w& depth_mm, const cv::Mat1b& mask,
             peak = hi;  // the whole mode is too small; continue beyond it
             continue;
         }
+        // A mode spread over (nearly) every image column is scenery seen edge-on: the strip of
+        // ground the sensor still reads before grazing angles drop it, a wall, a table edge.
+        const float coverage = columnCoverage(depth_mm, mask, static_cast<float>(lo) * bin_mm,
+                                              static_cast<float>(hi + 1) * bin_mm);
+        if (coverage > kSceneryColumnCoverage) {
+            report.notes.push_back(
+                "skipped the mode at " +
+                metres((static_cast<float>(peak) + 0.5f) * params.histogramBin_m) + ": it spans " +
+                std::to_string(static_cast<int>(100 * coverage)) +
+                " % of the image columns (ground or wall, not a tuft)");
+            peak = hi;
+            continue;
+        }
         DepthBand band;
         band.near_m = static_cast<float>(lo) * params.histogramBin_m;
         band.far_m = static_cast<float>(hi + 1) * params.histogramBin_m;
@@ -98,6 +129,39 @@ cv::Mat1b depthBandMask(const cv::Mat1w& depth_mm, DepthBand band, StageReport& 
     report.notes.push_back("band " + metres(band.near_m) + " .. " + metres(band.far_m) + " keeps " +
                            std::to_string(cv::countNonZero(mask)) + " px");
     return mask;
+}
+
+void growDepthContinuous(const cv::Mat1w& depth_mm, const cv::Mat1b& allowed, DepthBand band,
+                         const SegmenterParams& params, cv::Mat1b& bandMask, StageReport& report) {
+    if (params.bandGrowStep_m <= 0.f) return;
+    const int step_mm = static_cast<int>(std::lround(params.bandGrowStep_m * kMillimetresPerMetre));
+    const int lo_mm =
+        static_cast<int>((band.near_m - params.maxBandHalfWidth_m) * kMillimetresPerMetre);
+    const int hi_mm =
+        static_cast<int>((band.far_m + params.maxBandHalfWidth_m) * kMillimetresPerMetre);
+    std::vector<cv::Point> stack;
+    for (int y = 0; y < bandMask.rows; ++y)
+        for (int x = 0; x < bandMask.cols; ++x)
+            if (bandMask(y, x)) stack.emplace_back(x, y);
+    int grown = 0;
+    while (!stack.empty()) {
+        const cv::Point p = stack.back();
+        stack.pop_back();
+        const int d0 = depth_mm(p);
+        for (int dy = -1; dy <= 1; ++dy)
+            for (int dx = -1; dx <= 1; ++dx) {
+                const cv::Point q(p.x + dx, p.y + dy);
+                if (q.x < 0 || q.y < 0 || q.x >= bandMask.cols || q.y >= bandMask.rows) continue;
+                if (bandMask(q) || !allowed(q)) continue;
+                const int d = depth_mm(q);
+                if (d == 0 || d < lo_mm || d > hi_mm || std::abs(d - d0) > step_mm) continue;
+                bandMask(q) = 255;
+                ++grown;
+                stack.push_back(q);
+            }
+    }
+    report.notes.push_back("grew the band by " + std::to_string(grown) +
+                           " depth-continuous px (steps <= " + std::to_string(step_mm) + " mm)");
 }
 
 }  // namespace meadow::capture::segmentation

@@ -1,10 +1,10 @@
 // Ground and background removal with PCL: fit large planes to the masked points and clear the
 // pixels within planeDistance_m of them. Two fitters, selectable:
-//  - Ransac: pcl::SACSegmentation with SACMODEL_PARALLEL_PLANE around the optical axis, so only
-//    planes seen at an angle (ground, table) can win; a tuft seen from the side is itself nearly
-//    a plane facing the camera and must never be removed.
+//  - Ransac: pcl::SACSegmentation with SACMODEL_PERPENDICULAR_PLANE about the camera's vertical
+//    axis, so only ground-like planes can win; a tuft seen from the side is itself nearly a plane
+//    and must never be removed, and the back wall is the depth band's job.
 //  - OrganizedMultiPlane: integral-image normals + pcl::OrganizedMultiPlaneSegmentation, then
-//    the same obliquity test on each plane found.
+//    the same tilt test on each plane found.
 // Both fit on a strided sample and then test every masked pixel against the plane equation,
 // which is cheaper than fitting on all pixels and gives the same inliers.
 // This is one of the two files that include PCL (the other is outlier_removal.cpp).
@@ -20,6 +20,7 @@
 #include <cmath>
 #include <numbers>
 #include <opencv2/core.hpp>
+#include <opencv2/imgproc.hpp>
 #include <sstream>
 
 #include "segmentation/stages.h"
@@ -35,14 +36,24 @@ constexpr float kOmpsAngularThreshold_deg = 5.0f;
 constexpr float kNormalMaxDepthChangeFactor = 0.02f;
 constexpr float kNormalSmoothingSize_px = 10.0f;
 constexpr int kRansacSeed = 12345;  // deterministic results run to run
+// A ground plane is a solid region: at least this share of its inliers has all 8 neighbours
+// inliers too (the noisy, quantised ground of the simulated sensor scores about 0.45-0.5 at the
+// sample stride; thin blades far less).
+constexpr float kMinPlaneSolidity = 0.3f;
+// Rejected (non-solid) planes give RANSAC this many more tries to find the ground.
+constexpr int kExtraPlaneAttempts = 2;
+// Plane inliers are cleared only in connected regions of at least this share of the image
+// (0.5 % = 1536 px at 640x480): ground, not the band where a plane crosses a blade.
+constexpr float kMinGroundComponentFraction = 0.005f;
 
 struct Plane {
     Eigen::Vector4f coefficients;  // n.x + d = 0, |n| = 1
 };
 
-float obliquity_deg(const Eigen::Vector3f& n) {
-    // Angle between the plane's normal and the optical axis: 0 = facing the camera squarely.
-    return std::acos(std::min(1.0f, std::abs(n.z()) / n.norm())) / kDegToRad;
+float tilt_deg(const Eigen::Vector3f& n) {
+    // Angle between the plane's normal and the camera's vertical axis: 0 = level ground seen
+    // by a level camera, 90 = a wall facing the camera.
+    return std::acos(std::min(1.0f, std::abs(n.y()) / n.norm())) / kDegToRad;
 }
 
 pcl::PointCloud<pcl::PointXYZ>::Ptr sampleCloud(const cv::Mat1w& depth_mm, const Intrinsics& K,
@@ -75,25 +86,68 @@ pcl::PointCloud<pcl::PointXYZ>::Ptr sampleCloud(const cv::Mat1w& depth_mm, const
     return cloud;
 }
 
-// Clears the mask pixels within tolerance of the plane; returns how many.
+// Clears the mask pixels within tolerance of the plane that form large connected regions;
+// returns how many. Small inlier regions are where the plane merely cuts through blades: a
+// ground plane fitted to the thin strip of ground a grazing view still reads is poorly
+// constrained and may pass through the tuft, and those crossings must stay.
 int clearPlane(const cv::Mat1w& depth_mm, const Intrinsics& K, const Plane& plane,
                float tolerance_m, cv::Mat1b& mask) {
     const Eigen::Vector4f& c = plane.coefficients;
-    int cleared = 0;
+    cv::Mat1b inliers(mask.size(), std::uint8_t{0});
     for (int y = 0; y < depth_mm.rows; ++y) {
-        auto* m = mask[y];
+        const auto* m = mask[y];
         const auto* d = depth_mm[y];
+        auto* in = inliers[y];
         for (int x = 0; x < depth_mm.cols; ++x) {
             if (m[x] == 0 || d[x] == 0) continue;
             const auto v = K.backProject(static_cast<float>(x), static_cast<float>(y),
                                          static_cast<float>(d[x]) / kMillimetresPerMetre);
-            if (std::abs(c[0] * v.x + c[1] * v.y + c[2] * v.z + c[3]) <= tolerance_m) {
+            if (std::abs(c[0] * v.x + c[1] * v.y + c[2] * v.z + c[3]) <= tolerance_m) in[x] = 255;
+        }
+    }
+    cv::Mat1i labels;
+    cv::Mat stats, centroids;
+    const int n = cv::connectedComponentsWithStats(inliers, labels, stats, centroids, 8, CV_32S);
+    const int minArea =
+        static_cast<int>(kMinGroundComponentFraction * static_cast<float>(mask.total()));
+    std::vector<char> clear(static_cast<size_t>(n), 0);
+    for (int i = 1; i < n; ++i)
+        clear[static_cast<size_t>(i)] = stats.at<int>(i, cv::CC_STAT_AREA) >= minArea;
+    int cleared = 0;
+    for (int y = 0; y < mask.rows; ++y) {
+        auto* m = mask[y];
+        const auto* l = labels[y];
+        for (int x = 0; x < mask.cols; ++x)
+            if (clear[static_cast<size_t>(l[x])]) {
                 m[x] = 0;
                 ++cleared;
             }
-        }
     }
     return cleared;
+}
+
+// Share of a plane's inliers (on the sample grid) whose 8 neighbours are inliers too. The ground
+// or a table top is a solid region; a fan of blades that happens to lie near one plane is a
+// set of thin strips and must not be removed as "ground".
+float solidity(const cv::Mat1w& depth_mm, const Intrinsics& K, const Plane& plane,
+               float tolerance_m, const cv::Mat1b& mask, int stride) {
+    const int w = (depth_mm.cols + stride - 1) / stride, h = (depth_mm.rows + stride - 1) / stride;
+    cv::Mat1b inliers(h, w, std::uint8_t{0});
+    const Eigen::Vector4f& c = plane.coefficients;
+    for (int y = 0, sy = 0; y < depth_mm.rows; y += stride, ++sy)
+        for (int x = 0, sx = 0; x < depth_mm.cols; x += stride, ++sx) {
+            const auto d = depth_mm(y, x);
+            if (d == 0 || mask(y, x) == 0) continue;
+            const auto v = K.backProject(static_cast<float>(x), static_cast<float>(y),
+                                         static_cast<float>(d) / kMillimetresPerMetre);
+            if (std::abs(c[0] * v.x + c[1] * v.y + c[2] * v.z + c[3]) <= tolerance_m)
+                inliers(sy, sx) = 255;
+        }
+    const int all = cv::countNonZero(inliers);
+    if (all == 0) return 0.f;
+    cv::Mat1b interior;
+    cv::erode(inliers, interior, cv::Mat());
+    return static_cast<float>(cv::countNonZero(interior)) / static_cast<float>(all);
 }
 
 std::vector<Plane> ransacPlanes(const cv::Mat1w& depth_mm, const Intrinsics& K,
@@ -101,16 +155,19 @@ std::vector<Plane> ransacPlanes(const cv::Mat1w& depth_mm, const Intrinsics& K,
                                 std::vector<std::string>& notes) {
     std::vector<Plane> planes;
     const int stride = params.planeSampleStride_px;
-    for (int p = 0; p < params.maxPlanes; ++p) {
-        auto cloud = sampleCloud(depth_mm, K, mask, stride, /*organized=*/false);
+    cv::Mat1b candidates = mask.clone();  // rejected planes leave the candidates, not the mask
+    const int maxAttempts = params.maxPlanes + kExtraPlaneAttempts;
+    for (int attempt = 0;
+         attempt < maxAttempts && static_cast<int>(planes.size()) < params.maxPlanes; ++attempt) {
+        auto cloud = sampleCloud(depth_mm, K, candidates, stride, /*organized=*/false);
         const auto minInliers =
             static_cast<size_t>(params.minPlaneFraction * static_cast<float>(cloud->size()));
         if (cloud->size() < 3) break;
         pcl::SACSegmentation<pcl::PointXYZ> sac;
         sac.setOptimizeCoefficients(true);
-        sac.setModelType(pcl::SACMODEL_PARALLEL_PLANE);
-        sac.setAxis(Eigen::Vector3f(0.f, 0.f, 1.f));
-        sac.setEpsAngle((90.0f - params.minPlaneObliquity_deg) * kDegToRad);
+        sac.setModelType(pcl::SACMODEL_PERPENDICULAR_PLANE);
+        sac.setAxis(Eigen::Vector3f(0.f, 1.f, 0.f));
+        sac.setEpsAngle(params.maxGroundTilt_deg * kDegToRad);
         sac.setMethodType(pcl::SAC_RANSAC);
         sac.setDistanceThreshold(params.planeDistance_m);
         sac.setMaxIterations(params.ransacIterations);
@@ -121,7 +178,7 @@ std::vector<Plane> ransacPlanes(const cv::Mat1w& depth_mm, const Intrinsics& K,
         sac.segment(inliers, coefficients);
         if (coefficients.values.size() != 4 ||
             inliers.indices.size() < std::max<size_t>(3, minInliers)) {
-            if (p == 0)
+            if (planes.empty())
                 notes.push_back("no oblique plane holds " +
                                 std::to_string(static_cast<int>(100 * params.minPlaneFraction)) +
                                 " % of the masked points");
@@ -131,9 +188,20 @@ std::vector<Plane> ransacPlanes(const cv::Mat1w& depth_mm, const Intrinsics& K,
         plane.coefficients = Eigen::Vector4f(coefficients.values[0], coefficients.values[1],
                                              coefficients.values[2], coefficients.values[3]);
         plane.coefficients /= plane.coefficients.head<3>().norm();
-        if (obliquity_deg(plane.coefficients.head<3>()) < params.minPlaneObliquity_deg) break;
+        if (tilt_deg(plane.coefficients.head<3>()) > params.maxGroundTilt_deg) break;
+        const float solid =
+            solidity(depth_mm, K, plane, params.planeDistance_m, candidates, stride);
+        if (solid < kMinPlaneSolidity) {
+            std::ostringstream s;
+            s.precision(2);
+            s << "kept a plane of " << inliers.indices.size() << " samples: only " << solid
+              << " of its inliers are interior (thin strips, e.g. blades), not ground";
+            notes.push_back(s.str());
+            clearPlane(depth_mm, K, plane, params.planeDistance_m, candidates);
+            continue;
+        }
         planes.push_back(plane);
-        clearPlane(depth_mm, K, plane, params.planeDistance_m, mask);
+        clearPlane(depth_mm, K, plane, params.planeDistance_m, candidates);
     }
     return planes;
 }
@@ -170,9 +238,15 @@ std::vector<Plane> organizedPlanes(const cv::Mat1w& depth_mm, const Intrinsics& 
         Plane plane;
         plane.coefficients = r.getCoefficients();
         plane.coefficients /= plane.coefficients.head<3>().norm();
-        if (obliquity_deg(plane.coefficients.head<3>()) < params.minPlaneObliquity_deg) {
-            notes.push_back("kept a plane facing the camera (" + std::to_string(r.getCount()) +
-                            " samples): not ground");
+        if (tilt_deg(plane.coefficients.head<3>()) > params.maxGroundTilt_deg) {
+            notes.push_back("kept a plane tilted beyond maxGroundTilt_deg (" +
+                            std::to_string(r.getCount()) + " samples): not ground");
+            continue;
+        }
+        if (solidity(depth_mm, K, plane, params.planeDistance_m, mask,
+                     params.planeSampleStride_px) < kMinPlaneSolidity) {
+            notes.push_back("kept a plane of " + std::to_string(r.getCount()) +
+                            " samples: its inliers are thin strips (blades), not ground");
             continue;
         }
         found.emplace_back(r.getCount(), plane);
@@ -203,8 +277,8 @@ void removePlanes(const cv::Mat1w& depth_mm, const Intrinsics& intrinsics,
         std::ostringstream s;
         s.precision(3);
         s << toString(params.planeMethod) << " plane n=(" << c[0] << ", " << c[1] << ", " << c[2]
-          << ") d=" << c[3] << " m, " << obliquity_deg(c.head<3>())
-          << " deg from facing the camera: " << cleared << " px dropped as ground/background";
+          << ") d=" << c[3] << " m, tilted " << tilt_deg(c.head<3>())
+          << " deg from level: " << cleared << " px dropped as ground/background";
         report.notes.push_back(s.str());
     }
 }

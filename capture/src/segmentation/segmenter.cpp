@@ -70,9 +70,10 @@ std::string SegmenterParams::problem() const {
         {"histogramBin_m", histogramBin_m, 1e-4f, 1.f},
         {"minModeFraction", minModeFraction, 0.f, 1.f},
         {"maxBandHalfWidth_m", maxBandHalfWidth_m, 1e-3f, kMaxDepth_m},
+        {"bandGrowStep_m", bandGrowStep_m, 0.f, 1.f},
         {"planeDistance_m", planeDistance_m, 1e-4f, 1.f},
         {"minPlaneFraction", minPlaneFraction, 0.f, 1.f},
-        {"minPlaneObliquity_deg", minPlaneObliquity_deg, 0.f, 90.f},
+        {"maxGroundTilt_deg", maxGroundTilt_deg, 0.f, 90.f},
         {"outlierDepthTolerance_m", outlierDepthTolerance_m, 1e-4f, 1.f},
         {"statisticalStddevMul", statisticalStddevMul, 0.f, 100.f},
         {"minValidFrameFraction", minValidFrameFraction, 0.f, 1.f},
@@ -201,8 +202,10 @@ struct Segmenter::Impl {
             stage(out, "depth band", &mask, [&](StageReport& r) {
                 band = seg::automaticDepthBand(depth_mm, mask, params, r);
                 if (band.found) {
-                    const cv::Mat1b inBand = seg::depthBandMask(depth_mm, band, r);
-                    mask &= inBand;
+                    cv::Mat1b inBand = seg::depthBandMask(depth_mm, band, r);
+                    inBand &= mask;
+                    seg::growDepthContinuous(depth_mm, mask, band, params, inBand, r);
+                    mask = inBand;
                 } else {
                     mask.setTo(0);
                 }

@@ -29,6 +29,10 @@ struct DepthBand {
 DepthBand automaticDepthBand(const cv::Mat1w& depth_mm, const cv::Mat1b& mask,
                              const SegmenterParams& params, StageReport& report);
 cv::Mat1b depthBandMask(const cv::Mat1w& depth_mm, DepthBand band, StageReport& report);
+// Grows `band` into pixels of `allowed` that are depth-continuous (step <= step_m between
+// 8-neighbours) with it and within maxBandHalfWidth_m of the band.
+void growDepthContinuous(const cv::Mat1w& depth_mm, const cv::Mat1b& allowed, DepthBand band,
+                         const SegmenterParams& params, cv::Mat1b& bandMask, StageReport& report);
 
 // plane_removal.cpp (PCL). Clears mask pixels on large oblique planes (ground, table top).
 void removePlanes(const cv::Mat1w& depth_mm, const Intrinsics& intrinsics,

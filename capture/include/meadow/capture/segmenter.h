@@ -41,6 +41,10 @@ enum class ReferencePoint {
     ContourCentre,  // centroid of the cluster (Fan & Sheng 2017, Sec. 4.2)
     BasePoint,      // lowest part of the cluster, where the blades of a side-viewed tuft meet
 };
+enum class BladeMaskMethod {
+    NearestContour,  // each cluster pixel to the blade whose contour piece is nearest
+    Wedge,           // the polygon of the blade's contour piece closed through the reference
+};
 std::string toString(PlaneMethod);
 std::string toString(OutlierMethod);
 std::string toString(ReferencePoint);
@@ -55,14 +59,21 @@ struct SegmenterParams {
     float histogramBin_m = 0.01f;
     float minModeFraction = 0.01f;
     float maxBandHalfWidth_m = 0.5f;  // the automatic band never spans more than this each side
+    // The automatic band then grows into neighbouring pixels whose depth differs by at most
+    // this from an in-band neighbour (tips leaning toward or away from the camera leave the
+    // histogram mode but stay depth-continuous with their blade); 0 = no growth.
+    float bandGrowStep_m = 0.015f;
 
     // --- Ground / background plane removal.
     PlaneMethod planeMethod = PlaneMethod::Ransac;
-    float planeDistance_m = 0.012f;    // inlier tolerance; > sensor noise at 1-1.5 m
-    float minPlaneFraction = 0.15f;    // a plane must hold this share of the band's pixels
-    float minPlaneObliquity_deg = 30;  // planes facing the camera more squarely than this are
-                                       // kept: a fanned tuft seen from the side is one of them
-    int maxPlanes = 2;
+    float planeDistance_m = 0.012f;  // inlier tolerance; > sensor noise at 1-1.5 m
+    float minPlaneFraction = 0.02f;  // a plane must hold this share of the masked pixels (the
+                                     // ground seen at grazing angles reads mostly 0)
+    // Only ground-like planes are removed: the normal within this angle of the camera's up
+    // axis (-y), i.e. a camera pitched up to this much. The back wall is left to the depth band,
+    // and planes through a fan of blades or the wall-floor corner (measured 50-60 deg) are kept.
+    float maxGroundTilt_deg = 45.0f;
+    int maxPlanes = 1;
     int planeSampleStride_px = 2;  // RANSAC fits on every n-th pixel, inliers use all pixels
     int ransacIterations = 200;
 
@@ -93,6 +104,7 @@ struct SegmenterParams {
     float minPersistence_px = 6.0f;
     float minPersistenceFraction = 0.06f;
     int minBladeContour_px = 12;  // contour pieces shorter than this merge into a neighbour
+    BladeMaskMethod bladeMask = BladeMaskMethod::NearestContour;
 
     // --- Flags.
     float minResolvableWidth_px = 2.0f;  // TooThin below this mean width

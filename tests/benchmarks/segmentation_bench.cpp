@@ -1,0 +1,116 @@
+// Segmentation front end at 640x480 on one core: the whole pipeline per frame (frames/s) and
+// each stage's share (counters, ms per frame), with and without PCL, for each plane fitter and
+// outlier filter. Plane fitters are also scored for accuracy on the drawn scene: ground pixels
+// left in the mask and blade pixels wrongly removed.
+#include <benchmark/benchmark.h>
+
+#include <map>
+
+#include "meadow/capture/segmenter.h"
+#include "segmentation/drawn_tuft.h"
+
+namespace {
+
+using namespace meadow::capture;
+
+const drawn::Drawn& scene() {
+    static const drawn::Drawn d = drawn::draw(drawn::fan(9, 65.f), {.sigma_mm = 3.f,
+                                                                    .dropoutRate = 0.02f,
+                                                                    .flyingPixelRate = 0.3f,
+                                                                    .lateralJitter_px = 1,
+                                                                    .seed = 5});
+    return d;
+}
+
+void run(benchmark::State& state, const SegmenterParams& params) {
+    const Segmenter segmenter(params);
+    const auto& d = scene();
+    std::map<std::string, double> stage_ms;
+    std::size_t blades = 0;
+    for (auto _ : state) {
+        const Segmentation s = segmenter.segment(d.frame);
+        benchmark::DoNotOptimize(s.blades.data());
+        for (const auto& r : s.report) stage_ms[r.stage] += r.time_ms;
+        blades = s.blades.size();
+    }
+    for (const auto& [stage, ms] : stage_ms)
+        state.counters[stage + " ms"] = ms / static_cast<double>(state.iterations());
+    state.counters["blades"] = static_cast<double>(blades);
+    state.counters["frames/s"] =
+        benchmark::Counter(static_cast<double>(state.iterations()), benchmark::Counter::kIsRate);
+    // Accuracy of the ground removal: ground left in the mask, blade pixels lost.
+    const Segmentation s = segmenter.segment(d.frame);
+    const cv::Mat1b ground = (d.labels == 0) & (d.frame.depth_mm > 0);
+    const cv::Mat1b bladesTruth = d.labels > 0;
+    state.counters["ground px left"] = cv::countNonZero(ground & s.clusterMask);
+    state.counters["blade px lost"] = cv::countNonZero(bladesTruth & ~s.clusterMask);
+}
+
+SegmenterParams userBand(PlaneMethod plane,
+                         OutlierMethod outliers = OutlierMethod::OrganizedNeighbourhood) {
+    SegmenterParams p;
+    p.nearDepth_m = 0.9f;  // a user band that holds the tuft and the ground around its base
+    p.farDepth_m = 1.2f;
+    p.planeMethod = plane;
+    p.outlierMethod = outliers;
+    return p;
+}
+
+void BM_FrontEnd_UserBand_NoPcl(benchmark::State& s) { run(s, userBand(PlaneMethod::None)); }
+void BM_FrontEnd_UserBand_Ransac(benchmark::State& s) { run(s, userBand(PlaneMethod::Ransac)); }
+void BM_FrontEnd_UserBand_OrganizedMultiPlane(benchmark::State& s) {
+    run(s, userBand(PlaneMethod::OrganizedMultiPlane));
+}
+void BM_FrontEnd_UserBand_NoPcl_StatisticalOutliers(benchmark::State& s) {
+    run(s, userBand(PlaneMethod::None, OutlierMethod::Statistical));
+}
+void BM_FrontEnd_AutoBand_Ransac(benchmark::State& s) {
+    SegmenterParams p;
+    p.planeMethod = PlaneMethod::Ransac;
+    run(s, p);
+}
+void BM_FrontEnd_AutoBand_OrganizedMultiPlane(benchmark::State& s) {
+    SegmenterParams p;
+    p.planeMethod = PlaneMethod::OrganizedMultiPlane;
+    run(s, p);
+}
+void BM_FrontEnd_AutoBand_Default(benchmark::State& s) { run(s, SegmenterParams{}); }
+
+// Mask -> blade contours alone (clean-up, contours, partition, flags).
+void BM_MaskToBlades(benchmark::State& state) {
+    const Segmenter segmenter;
+    const cv::Mat1b mask = scene().labels > 0;
+    for (auto _ : state) {
+        const Segmentation s = segmenter.segmentMask(mask);
+        benchmark::DoNotOptimize(s.blades.data());
+    }
+    state.counters["frames/s"] =
+        benchmark::Counter(static_cast<double>(state.iterations()), benchmark::Counter::kIsRate);
+}
+
+void BM_TemporalFusion5(benchmark::State& state) {
+    std::vector<DepthFrame> frames;
+    for (unsigned i = 0; i < 5; ++i)
+        frames.push_back(
+            drawn::draw(drawn::fan(9, 65.f), {.sigma_mm = 3.f, .dropoutRate = 0.1f, .seed = 20 + i})
+                .frame);
+    const Segmenter segmenter(userBand(PlaneMethod::None));
+    for (auto _ : state) {
+        const Segmentation s = segmenter.segment(std::span<const DepthFrame>(frames));
+        benchmark::DoNotOptimize(s.blades.data());
+    }
+}
+
+BENCHMARK(BM_FrontEnd_UserBand_NoPcl)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_FrontEnd_UserBand_NoPcl_StatisticalOutliers)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_FrontEnd_UserBand_Ransac)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_FrontEnd_UserBand_OrganizedMultiPlane)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_FrontEnd_AutoBand_Ransac)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_FrontEnd_AutoBand_OrganizedMultiPlane)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_FrontEnd_AutoBand_Default)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_MaskToBlades)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_TemporalFusion5)->Unit(benchmark::kMillisecond);
+
+}  // namespace
+
+BENCHMARK_MAIN();

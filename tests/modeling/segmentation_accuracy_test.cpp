@@ -1,0 +1,158 @@
+// Segmentation accuracy against the simulated sensor's ground truth (capture's Segmenter on
+// modeling's synthetic tuft presets; it lives under tests/modeling/ because the presets do).
+// A found blade matches a true one when their pixel IoU >= 0.5 (one-to-one, greedy by IoU).
+// Asserted at nominal noise on the five blade-type presets: recall >= 0.95, median IoU >= 0.85.
+// MEADOW_SEGMENTATION_TABLE=1 prints the full preset x noise table (README's numbers);
+// MEADOW_SEGMENTATION_DEBUG=<folder> writes each frame's overlay.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cstdlib>
+#include <filesystem>
+#include <iomanip>
+#include <iostream>
+#include <opencv2/core.hpp>
+
+#include "meadow/capture/segmenter.h"
+#include "meadow/capture/simulated_sensor.h"
+#include "meadow/modeling/synthetic_tuft.h"
+
+namespace meadow {
+namespace {
+
+using capture::Segmentation;
+
+constexpr double kMatchIou = 0.5;
+constexpr double kTargetRecall = 0.95;
+constexpr double kTargetMedianIou = 0.85;
+const std::vector<std::string> kBladeTypePresets{"slim-grass", "quadratic-leaf", "shrub-leaf",
+                                                 "bamboo-leaf", "sharp-tip"};
+constexpr int kSeedsPerPreset = 2;
+
+struct Score {
+    int truth = 0, found = 0, matched = 0;
+    std::vector<double> iou;  // per matched true blade... and 0 for missed ones
+    std::vector<std::string> flags;
+    void add(const Score& o) {
+        truth += o.truth;
+        found += o.found;
+        matched += o.matched;
+        iou.insert(iou.end(), o.iou.begin(), o.iou.end());
+        flags.insert(flags.end(), o.flags.begin(), o.flags.end());
+    }
+    [[nodiscard]] double recall() const { return truth ? double(matched) / truth : 1.0; }
+    [[nodiscard]] double precision() const { return found ? double(matched) / found : 1.0; }
+    [[nodiscard]] double medianIou() const {
+        if (iou.empty()) return 0.0;
+        auto v = iou;
+        std::nth_element(v.begin(), v.begin() + static_cast<long>(v.size() / 2), v.end());
+        return v[v.size() / 2];
+    }
+};
+
+// Greedy one-to-one matching by IoU over every (true, found) pair.
+Score score(const cv::Mat1w& labels, const Segmentation& s) {
+    double maxLabel = 0;
+    cv::minMaxLoc(labels, nullptr, &maxLabel);
+    Score sc;
+    std::vector<int> ids;
+    for (int id = 1; id <= static_cast<int>(maxLabel); ++id)
+        if (cv::countNonZero(labels == id) > 0) ids.push_back(id);
+    sc.truth = static_cast<int>(ids.size());
+    sc.found = static_cast<int>(s.blades.size());
+    struct Pair {
+        double iou;
+        size_t t, f;
+    };
+    std::vector<Pair> pairs;
+    for (size_t t = 0; t < ids.size(); ++t) {
+        const cv::Mat1b truth = labels == ids[t];
+        for (size_t f = 0; f < s.blades.size(); ++f) {
+            const double inter = cv::countNonZero(truth & s.blades[f].mask);
+            if (inter == 0) continue;
+            pairs.push_back({inter / cv::countNonZero(truth | s.blades[f].mask), t, f});
+        }
+    }
+    std::sort(pairs.begin(), pairs.end(),
+              [](const Pair& a, const Pair& b) { return a.iou > b.iou; });
+    std::vector<double> best(ids.size(), 0.0);
+    std::vector<char> tUsed(ids.size(), 0), fUsed(s.blades.size(), 0);
+    for (const auto& p : pairs) {
+        if (tUsed[p.t] || fUsed[p.f]) continue;
+        tUsed[p.t] = fUsed[p.f] = 1;
+        best[p.t] = p.iou;
+        if (p.iou >= kMatchIou) ++sc.matched;
+    }
+    sc.iou = best;
+    for (const auto& b : s.blades)
+        for (const auto& r : b.reasons) sc.flags.push_back(r);
+    for (const auto& c : s.clusters)
+        for (const auto& r : c.reasons) sc.flags.push_back("cluster " + r);
+    return sc;
+}
+
+Score run(const std::string& presetName, float noiseScale, std::uint64_t seed,
+          const capture::SegmenterParams& params = {}) {
+    const auto* preset = modeling::findSynthPreset(presetName);
+    if (!preset) throw std::invalid_argument("no preset " + presetName);
+    modeling::TuftParams tp;
+    tp.seed = seed;
+    const auto spec = modeling::buildPresetSpec(*preset, tp);
+    const auto tuft = modeling::buildTuft(spec, 0);
+    capture::NoiseModel noise;
+    noise.scale = noiseScale * preset->noiseMultiplier;
+    const capture::SimulatedSensor sensor(spec.camera.intrinsics, noise);
+    const auto sim = sensor.render(tuft.meshes(), seed);
+    capture::DepthFrame frame;
+    frame.depth_mm = sim.depth_mm;
+    frame.intrinsics = spec.camera.intrinsics;
+    const Segmentation s = capture::Segmenter(params).segment(frame);
+    if (const char* folder = std::getenv("MEADOW_SEGMENTATION_DEBUG"))
+        capture::writeDebugOverlay(
+            std::filesystem::path(folder) / (presetName + "_n" + std::to_string(noiseScale) + "_s" +
+                                             std::to_string(seed) + ".png"),
+            frame, s);
+    if (std::getenv("MEADOW_SEGMENTATION_VERBOSE")) std::cout << presetName << ' ' << s.summary();
+    return score(sim.labels, s);
+}
+
+TEST(SegmentationAccuracy, BladeTypePresetsAtNominalNoiseMeetRecallAndIouTargets) {
+    for (const auto& preset : kBladeTypePresets) {
+        Score total;
+        for (int seed = 1; seed <= kSeedsPerPreset; ++seed)
+            total.add(run(preset, 1.0f, static_cast<std::uint64_t>(seed)));
+        EXPECT_GE(total.recall(), kTargetRecall)
+            << preset << ": " << total.matched << "/" << total.truth;
+        EXPECT_GE(total.medianIou(), kTargetMedianIou) << preset;
+        std::cout << "  " << preset << ": recall " << total.recall() << " precision "
+                  << total.precision() << " median IoU " << total.medianIou() << '\n';
+    }
+}
+
+TEST(SegmentationAccuracy, PrintsPresetByNoiseTable) {
+    if (!std::getenv("MEADOW_SEGMENTATION_TABLE"))
+        GTEST_SKIP() << "set MEADOW_SEGMENTATION_TABLE=1";
+    std::vector<std::string> presets = kBladeTypePresets;
+    for (const auto& p : modeling::synthPresets())
+        if (std::find(presets.begin(), presets.end(), p.name) == presets.end())
+            presets.push_back(p.name);
+    std::cout << "| preset | noise | recall | precision | median IoU | flags raised "
+                 "|\n|---|---|---|---|---|---|\n";
+    for (const auto& preset : presets)
+        for (float noise : {0.f, 1.f, 2.f, 4.f}) {
+            Score total;
+            for (int seed = 1; seed <= kSeedsPerPreset; ++seed)
+                total.add(run(preset, noise, static_cast<std::uint64_t>(seed)));
+            std::map<std::string, int> kinds;
+            for (const auto& f : total.flags) ++kinds[f.substr(0, f.find(':'))];
+            std::string flags;
+            for (const auto& [k, n] : kinds)
+                flags += (flags.empty() ? "" : ", ") + k + " x" + std::to_string(n);
+            std::cout << std::fixed << std::setprecision(2) << "| " << preset << " | " << noise
+                      << "x | " << total.recall() << " | " << total.precision() << " | "
+                      << total.medianIou() << " | " << flags << " |\n";
+        }
+}
+
+}  // namespace
+}  // namespace meadow
