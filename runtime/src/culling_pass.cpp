@@ -38,10 +38,18 @@ void CullingPass::dispatch(const gl::Buffer& blades, std::uint32_t bladeCount,
                            const gl::Buffer& patches, std::uint32_t patchCount,
                            const CullCamera& camera, const CullSettings& settings,
                            const CullDepth* depth) {
-    if (bladeCount > capacity_)
+    dispatch(blades, bladeCount, patches, patchCount, camera, settings, depth,
+             CullTargets{visible_, capacity_, command_, stats_});
+}
+
+void CullingPass::dispatch(const gl::Buffer& blades, std::uint32_t bladeCount,
+                           const gl::Buffer& patches, std::uint32_t patchCount,
+                           const CullCamera& camera, const CullSettings& settings,
+                           const CullDepth* depth, const CullTargets& targets) {
+    if (bladeCount > targets.capacity)
         throw std::invalid_argument("CullingPass::dispatch: " + std::to_string(bladeCount) +
                                     " blades, but the visible-index buffer holds " +
-                                    std::to_string(capacity_));
+                                    std::to_string(targets.capacity));
     const gpu::CullParamsGpu params = packCullParams(
         settings, camera.clipFromWorld, camera.position_m, camera.near_m, camera.far_m, patchCount,
         depth ? depth->width_px : 0u, depth ? depth->height_px : 0u);
@@ -50,10 +58,10 @@ void CullingPass::dispatch(const gl::Buffer& blades, std::uint32_t bladeCount,
     glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT);
     glNamedBufferSubData(params_.id(), 0, sizeof(params), &params);
     const gpu::DrawCommandGpu reset{0u, 1u, 0u, 0u};  // one instance, no vertices yet
-    glNamedBufferSubData(command_.id(), 0, sizeof(reset), &reset);
+    glNamedBufferSubData(targets.drawCommand.id(), 0, sizeof(reset), &reset);
     const std::uint32_t zero = 0;
-    glClearNamedBufferSubData(stats_.id(), GL_R32UI, 0, sizeof(gpu::CullStatsGpu), GL_RED_INTEGER,
-                              GL_UNSIGNED_INT, &zero);
+    glClearNamedBufferSubData(targets.stats.id(), GL_R32UI, 0, sizeof(gpu::CullStatsGpu),
+                              GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_UNIFORM_BARRIER_BIT);
     if (patchCount == 0) return;
 
@@ -61,9 +69,10 @@ void CullingPass::dispatch(const gl::Buffer& blades, std::uint32_t bladeCount,
     glBindBufferBase(GL_UNIFORM_BUFFER, CULL_UBO_BINDING, params_.id());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BLADE_SSBO_BINDING, blades.id());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, PATCH_SSBO_BINDING, patches.id());
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, VISIBLE_INDEX_SSBO_BINDING, visible_.id());
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, DRAW_COMMAND_SSBO_BINDING, command_.id());
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, CULL_STATS_SSBO_BINDING, stats_.id());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, VISIBLE_INDEX_SSBO_BINDING,
+                     targets.visibleIndices.id());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, DRAW_COMMAND_SSBO_BINDING, targets.drawCommand.id());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, CULL_STATS_SSBO_BINDING, targets.stats.id());
     glBindTextureUnit(CULL_DEPTH_TEXTURE_UNIT, depth ? depth->texture.id() : 0);
     glDispatchCompute(patchCount, 1, 1);
     // The draw reads the command (indirect) and the indices (SSBO); tests read back.

@@ -30,6 +30,15 @@ struct CullDepth {
     std::uint32_t height_px;
 };
 
+// Where a dispatch writes: the visible-index buffer (room for `capacity` uints), the
+// DrawCommandGpu and the CullStatsGpu. The pass owns one set; a renderer may pass its own.
+struct CullTargets {
+    const gl::Buffer& visibleIndices;
+    std::uint32_t capacity;
+    const gl::Buffer& drawCommand;
+    const gl::Buffer& stats;
+};
+
 class CullingPass {
 public:
     // Compiles cull.comp and allocates room for bladeCapacity visible indices.
@@ -42,6 +51,10 @@ public:
     void dispatch(const gl::Buffer& blades, std::uint32_t bladeCount, const gl::Buffer& patches,
                   std::uint32_t patchCount, const CullCamera& camera, const CullSettings& settings,
                   const CullDepth* depth);
+    // The same, writing into `targets` instead of the pass's own buffers.
+    void dispatch(const gl::Buffer& blades, std::uint32_t bladeCount, const gl::Buffer& patches,
+                  std::uint32_t patchCount, const CullCamera& camera, const CullSettings& settings,
+                  const CullDepth* depth, const CullTargets& targets);
 
     [[nodiscard]] const gl::Buffer& visibleIndices() const { return visible_; }
     [[nodiscard]] const gl::Buffer& drawCommand() const { return command_; }  // DrawCommandGpu

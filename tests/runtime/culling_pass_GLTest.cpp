@@ -129,6 +129,38 @@ TEST(CullingPassGLTest, WithoutDepthTextureOcclusionIsOffAndMoreBladesThanCapaci
         std::invalid_argument);
 }
 
+TEST(CullingPassGLTest, WritesIntoARenderersOwnBuffersWhenGivenTargets) {
+    GlContext context;
+    const testing::CullScene scene = testing::makeCullScene(33);
+    const auto bladeCount = static_cast<std::uint32_t>(scene.blades.size());
+    const auto patchCount = static_cast<std::uint32_t>(scene.patches.size());
+    CullingPass pass(context, 1);  // its own buffers are too small: the targets must be used
+    const gl::Buffer blades = upload(scene.blades), patches = upload(scene.patches);
+    const gl::Buffer visible = upload(std::vector<std::uint32_t>(bladeCount, 0u));
+    const gl::Buffer command = upload(std::vector<gpu::DrawCommandGpu>{{123u, 7u, 0u, 0u}});
+    const gl::Buffer stats = upload(std::vector<gpu::CullStatsGpu>{{9u, 9u, 9u, 9u}});
+    const CullCamera camera{scene.clipFromWorld, scene.camera_m, scene.near_m, scene.far_m};
+    CullSettings settings;
+    settings.maxDistance_m = 30.f;
+    pass.dispatch(blades, bladeCount, patches, patchCount, camera, settings, nullptr,
+                  CullTargets{visible, bladeCount, command, stats});
+    const CullResult cpu =
+        cullReference(scene.blades, scene.patches,
+                      packCullParams(settings, scene.clipFromWorld, scene.camera_m, scene.near_m,
+                                     scene.far_m, patchCount, 0, 0),
+                      nullptr);
+    gpu::DrawCommandGpu cmd{};
+    glGetNamedBufferSubData(command.id(), 0, sizeof(cmd), &cmd);
+    gpu::CullStatsGpu st{};
+    glGetNamedBufferSubData(stats.id(), 0, sizeof(st), &st);
+    EXPECT_EQ(cmd.vertexCount, cpu.visible.size());
+    EXPECT_EQ(cmd.instanceCount, 1u);
+    EXPECT_EQ(st.culledOrientation, cpu.stats.culledOrientation);
+    EXPECT_EQ(st.culledFrustum, cpu.stats.culledFrustum);
+    EXPECT_EQ(st.culledDistance, cpu.stats.culledDistance);
+    EXPECT_EQ(st.culledOcclusion, 0u);
+}
+
 // Orientation culling and front gravity use bladeWidthAxis() (common_physics.glsl, compiled as
 // C++ too); the draw pass builds the blade from bladeWidthDirection() (common_blade.glsl). Both
 // must give the same direction, or the wrong blades would be culled as edge-on.
