@@ -18,6 +18,8 @@ constexpr float kMaxHistogramDepth_m = 12.0f;
 // A depth mode present in more than this share of the image columns is scenery, not a tuft
 // (a tuft of 12 blades fills well under half the width at the presets' distances).
 constexpr float kSceneryColumnCoverage = 0.6f;
+// Valleys above this share of the mode's peak are crossed (between blades of one tuft).
+constexpr double kBandFloorFraction = 0.25;
 
 // Share of image columns holding a masked pixel within [lo_mm, hi_mm).
 float columnCoverage(const cv::Mat1w& depth_mm, const cv::Mat1b& mask, float lo_mm, float hi_mm) {
@@ -80,11 +82,16 @@ DepthBand automaticDepthBand(const cv::Mat1w& depth_mm, const cv::Mat1b& mask,
         const bool isPeak = (peak == 0 || at(peak - 1) < at(peak)) &&
                             (peak == bins - 1 || at(peak + 1) <= at(peak));
         if (!isPeak) continue;
+        // Widen down the mode's slopes to its valleys, and across valleys that stay above a
+        // share of the peak: a tuft is several blades at different depths, and the valleys
+        // between them are not the end of the tuft.
+        const double floor = kBandFloorFraction * at(peak);
         int lo = peak, hi = peak;
-        while (lo > 0 && peak - lo < maxHalf_bins && at(lo - 1) > 0.0 && at(lo - 1) <= at(lo)) --lo;
-        while (hi < bins - 1 && hi - peak < maxHalf_bins && at(hi + 1) > 0.0 &&
-               at(hi + 1) <= at(hi))
-            ++hi;
+        const auto widen = [&](int from, int to) {
+            return at(to) > 0.0 && (at(to) <= at(from) || at(to) > floor);
+        };
+        while (lo > 0 && peak - lo < maxHalf_bins && widen(lo, lo - 1)) --lo;
+        while (hi < bins - 1 && hi - peak < maxHalf_bins && widen(hi, hi + 1)) ++hi;
         double mass = 0.0;
         for (int i = lo; i <= hi; ++i) mass += hist[static_cast<size_t>(i)];
         if (mass < params.minModeFraction * total || mass < params.minRegionArea_px) {

@@ -58,7 +58,8 @@ struct SegmenterParams {
     float farDepth_m = 0.0f;
     float histogramBin_m = 0.01f;
     float minModeFraction = 0.01f;
-    float maxBandHalfWidth_m = 0.5f;  // the automatic band never spans more than this each side
+    float maxBandHalfWidth_m =
+        0.15f;  // the automatic band spans at most this each side of its mode (a tuft's depth)
     // The automatic band then grows into neighbouring pixels whose depth differs by at most
     // this from an in-band neighbour (tips leaning toward or away from the camera leave the
     // histogram mode but stay depth-continuous with their blade); 0 = no growth.
