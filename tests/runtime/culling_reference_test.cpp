@@ -36,6 +36,19 @@ CullSettings only(bool orientation, bool frustum, bool distance, bool occlusion)
     return s;
 }
 
+TEST(CullingReference, SharedHeadersGiveDistinctUniformBindingsAndOneBitPerTest) {
+    // physics_params.h and cull_params.h add uniform blocks next to blade_types.h's frame block.
+    EXPECT_NE(PHYSICS_UBO_BINDING, FRAME_UBO_BINDING);
+    EXPECT_NE(CULL_UBO_BINDING, FRAME_UBO_BINDING);
+    EXPECT_NE(CULL_UBO_BINDING, PHYSICS_UBO_BINDING);
+    EXPECT_EQ(CULL_TEST_ALL,
+              CULL_TEST_ORIENTATION | CULL_TEST_FRUSTUM | CULL_TEST_DISTANCE | CULL_TEST_OCCLUSION);
+    for (unsigned bit :
+         {CULL_TEST_ORIENTATION, CULL_TEST_FRUSTUM, CULL_TEST_DISTANCE, CULL_TEST_OCCLUSION})
+        EXPECT_EQ(bit & (bit - 1), 0u) << bit << " is not a single bit";
+    EXPECT_NE(PHYSICS_LENGTH_EXACT, PHYSICS_LENGTH_PAPER);
+}
+
 TEST(CullingReference, BladeSeenEdgeOnIsCulledByOrientationAndFaceOnIsKept) {
     const Camera cam;
     // Width direction at angle 0 is +x for up = +y (bladeWidthAxis); the camera looks along -z from
