@@ -10,5 +10,7 @@ void addCaptureCommand(CLI::App& app);
 void addConvertCommand(CLI::App& app);
 // meadow synth --preset NAME --out DIR | --list (synth_command.cpp)
 void addSynthCommand(CLI::App& app);
+// meadow render SCENE --out DIR [--frames N] [--size WxH] (render_command.cpp)
+void addRenderCommand(CLI::App& app);
 
 }  // namespace meadow::cli

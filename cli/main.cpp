@@ -12,6 +12,7 @@ int main(int argc, char** argv) {
     meadow::cli::addCaptureCommand(app);
     meadow::cli::addConvertCommand(app);
     meadow::cli::addSynthCommand(app);
+    meadow::cli::addRenderCommand(app);
 
     try {
         app.parse(argc, argv);

@@ -1,0 +1,133 @@
+#pragma once
+// A scene file (JSON, format "meadow.scene", version 1; README "Scene format"): the meshes grass
+// grows on, opaque props, the archetypes, how blades are seeded, camera, light, wind, colliders,
+// physics, culling and render settings. loadSceneDescription() reads and checks it; the renderer
+// turns it into GPU buffers.
+#include <cstdint>
+#include <filesystem>
+#include <glm/vec2.hpp>
+#include <glm/vec3.hpp>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "meadow/modeling/archetype.h"
+
+namespace meadow::runtime {
+
+inline constexpr const char* kSceneFormat = "meadow.scene";
+inline constexpr int kSceneVersion = 1;
+
+struct SceneMesh {
+    std::filesystem::path gltf;            // .glb or .gltf, resolved against the scene's folder
+    glm::vec3 albedo{0.25f, 0.2f, 0.12f};  // linear colour of the opaque surface
+};
+
+struct DensityMap {
+    std::filesystem::path image;  // 8/16-bit grey image; white keeps every blade, black none
+    glm::vec2 minXZ_m{0.f};       // world XZ of the image's first column / row
+    glm::vec2 maxXZ_m{1.f};       // world XZ of its last column / row
+};
+
+struct BladeSeeding {
+    float density_per_m2 = 300.f;  // blades per square metre of surface (before the density map)
+    float tuftFraction = 0.5f;     // fraction of the blades that grow in tufts, the rest single
+    int tuftBladesMin = 5;         // blades per tuft, uniform in [min, max]
+    int tuftBladesMax = 12;
+    float tuftRadius_m = 0.04f;         // blades of a tuft grow within this distance of its centre
+    float tuftSpacing_m = 0.0f;         // Poisson-disk distance between tuft centres; 0 = derived
+    glm::vec2 heightScale{0.8f, 1.2f};  // uniform range, times the archetype's height
+    glm::vec2 widthScale{0.8f, 1.2f};   // uniform range, times the archetype's width
+    glm::vec2 stiffness{0.6f, 1.0f};    // uniform range of the physics stiffness s
+    std::uint32_t seed = 1;             // the same seed gives the same meadow
+    std::optional<DensityMap> densityMap;
+};
+
+struct CameraKey {
+    float time_s = 0.f;
+    glm::vec3 position_m{0.f, 1.5f, 4.f};
+    glm::vec3 target_m{0.f};
+};
+
+struct CameraDescription {
+    std::vector<CameraKey> path;  // one key: a still camera; more: linear in time
+    float verticalFov_deg = 50.f;
+    float near_m = 0.05f;
+    float far_m = 200.f;
+};
+
+struct LightDescription {
+    glm::vec3 direction{0.4f, 0.8f, 0.3f};  // toward the light (world), normalised on load
+    float intensity = 1.1f;
+    float ambient = 0.25f;
+    glm::vec3 skyColor{0.55f, 0.7f, 0.9f};  // display colour of the background
+};
+
+struct WindDescription {
+    glm::vec3 direction{1.f, 0.f, 0.f};  // world, normalised on load
+    float strength_m_s2 = 2.f;
+    float frequency_hz = 0.4f;  // gust frequency
+};
+
+struct ColliderDescription {
+    glm::vec3 center_m{0.f};
+    float radius_m = 0.2f;
+    glm::vec3 velocity_m_s{0.f};  // the centre moves linearly with time
+};
+
+struct PhysicsDescription {
+    bool enabled = true;
+    float gravity_m_s2 = 9.81f;
+    float collisionDecay_per_s = 0.5f;  // how fast the persistent collision strength eta fades
+};
+
+struct CullingDescription {
+    bool orientation = true;
+    bool frustum = true;
+    bool distance = true;
+    bool occlusion = true;
+    float orientationThreshold = 0.9f;  // |dot(view, width direction)| above this is culled
+    float maxDistance_m = 40.f;
+    int distanceLevels = 8;
+};
+
+struct RenderSettings {
+    int width_px = 640;
+    int height_px = 360;
+    int msaaSamples = 4;
+    float frameRate_hz = 30.f;  // simulated time step between frames is 1 / frameRate_hz
+    int patchSize = 256;        // blades per patch, a multiple of BLADE_WORKGROUP_SIZE
+    int shapeOverride = -1;     // -1: archetype's own; else modeling::AnalyticShape for all
+    bool displacement = false;  // 3D displacement of the blade surface
+    float maxTessLevel = 12.f;
+    float minWidth_px = 1.f;                   // width correction
+    glm::vec3 rootColor{0.05f, 0.16f, 0.02f};  // linear
+    glm::vec3 tipColor{0.3f, 0.5f, 0.08f};     // linear
+    float translucency = 0.5f;
+    float aoAtRoot = 0.35f;
+};
+
+struct SceneDescription {
+    std::filesystem::path file;  // the scene file itself
+    std::vector<SceneMesh> grassMeshes;
+    std::vector<SceneMesh> props;
+    std::vector<modeling::Archetype> archetypes;
+    std::vector<float> archetypeWeights;  // one per archetype, > 0
+    BladeSeeding blades;
+    CameraDescription camera;
+    LightDescription light;
+    WindDescription wind;
+    std::vector<ColliderDescription> colliders;
+    PhysicsDescription physics;
+    CullingDescription culling;
+    RenderSettings render;
+};
+
+// Reads, validates and resolves a scene file (loads the archetype library it names). Throws
+// RuntimeError naming the file and the first problem.
+SceneDescription loadSceneDescription(const std::filesystem::path& sceneFile);
+// The same from JSON text; relative paths resolve against `baseDirectory`.
+SceneDescription parseSceneDescription(const std::string& jsonText,
+                                       const std::filesystem::path& origin);
+
+}  // namespace meadow::runtime

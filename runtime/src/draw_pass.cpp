@@ -1,0 +1,177 @@
+#include "draw_pass.h"
+
+#include <opencv2/imgproc.hpp>
+#include <string>
+
+#include "meadow/runtime/error.h"
+
+namespace meadow::runtime {
+namespace {
+
+// Tessellation: one segment along the blade per this many pixels of projected length (a curve
+// looks smooth at about 8 px per straight piece).
+constexpr float kPixelsPerSegment = 8.f;
+
+gl::ShaderProgram makeOpaqueProgram() {
+    return gl::ShaderProgram({.label = "opaque meshes",
+                              .stages = {{GL_VERTEX_SHADER, "depth_prepass.vert"},
+                                         {GL_FRAGMENT_SHADER, "depth_prepass.frag"}},
+                              .commonFiles = {"common_shading.glsl"},
+                              .defines = {}});
+}
+
+gl::ShaderProgram makeBladeProgram() {
+    return gl::ShaderProgram(
+        {.label = "blades",
+         .stages = {{GL_VERTEX_SHADER, "blade.vert"},
+                    {GL_TESS_CONTROL_SHADER, "blade.tesc"},
+                    {GL_TESS_EVALUATION_SHADER, "blade.tese"},
+                    {GL_FRAGMENT_SHADER, "blade.frag"}},
+         .commonFiles = {"common_blade.glsl", "common_shading.glsl"},
+         .defines = {{"BLADE_PIXELS_PER_SEGMENT", std::to_string(kPixelsPerSegment)}}});
+}
+
+void checkComplete(const gl::Framebuffer& fb, const char* what) {
+    const GLenum status = glCheckNamedFramebufferStatus(fb.id(), GL_FRAMEBUFFER);
+    if (status != GL_FRAMEBUFFER_COMPLETE)
+        throw RuntimeError(std::string("meadow::runtime: the ") + what +
+                           " framebuffer is incomplete (status 0x" + std::to_string(status) +
+                           "); lower render.msaa_samples or render.size_px");
+}
+
+}  // namespace
+
+DrawPass::DrawPass(int width_px, int height_px, int msaaSamples)
+    : width_(width_px),
+      height_(height_px),
+      samples_(msaaSamples),
+      msaaColor_(gl::Renderbuffer::create()),
+      msaaDepth_(gl::Renderbuffer::create()),
+      msaaTarget_(gl::Framebuffer::create()),
+      resolvedColor_(gl::Texture::create(GL_TEXTURE_2D)),
+      resolvedDepth_(gl::Texture::create(GL_TEXTURE_2D)),
+      resolvedColorTarget_(gl::Framebuffer::create()),
+      resolvedDepthTarget_(gl::Framebuffer::create()),
+      opaqueProgram_(makeOpaqueProgram()),
+      bladeProgram_(makeBladeProgram()),
+      emptyVertexArray_(gl::VertexArray::create()) {
+    GLint maxSamples = 1;
+    glGetIntegerv(GL_MAX_SAMPLES, &maxSamples);
+    samples_ = std::min(samples_, maxSamples);
+    glNamedRenderbufferStorageMultisample(msaaColor_.id(), samples_, GL_RGBA8, width_, height_);
+    glNamedRenderbufferStorageMultisample(msaaDepth_.id(), samples_, GL_DEPTH_COMPONENT32F, width_,
+                                          height_);
+    glNamedFramebufferRenderbuffer(msaaTarget_.id(), GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER,
+                                   msaaColor_.id());
+    glNamedFramebufferRenderbuffer(msaaTarget_.id(), GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER,
+                                   msaaDepth_.id());
+    checkComplete(msaaTarget_, "multisampled");
+
+    glTextureStorage2D(resolvedColor_.id(), 1, GL_RGBA8, width_, height_);
+    glNamedFramebufferTexture(resolvedColorTarget_.id(), GL_COLOR_ATTACHMENT0, resolvedColor_.id(),
+                              0);
+    checkComplete(resolvedColorTarget_, "resolved colour");
+    glTextureStorage2D(resolvedDepth_.id(), 1, GL_DEPTH_COMPONENT32F, width_, height_);
+    glTextureParameteri(resolvedDepth_.id(), GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    glTextureParameteri(resolvedDepth_.id(), GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    glNamedFramebufferTexture(resolvedDepthTarget_.id(), GL_DEPTH_ATTACHMENT, resolvedDepth_.id(),
+                              0);
+    glNamedFramebufferDrawBuffer(resolvedDepthTarget_.id(), GL_NONE);
+    checkComplete(resolvedDepthTarget_, "resolved depth");
+}
+
+void DrawPass::begin(glm::vec3 sky) const {
+    glBindFramebuffer(GL_FRAMEBUFFER, msaaTarget_.id());
+    glViewport(0, 0, width_, height_);
+    glEnable(GL_MULTISAMPLE);
+    glDisable(GL_CULL_FACE);
+    glEnable(GL_DEPTH_TEST);
+    glDepthMask(GL_TRUE);
+    glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+    const float color[4] = {sky.r, sky.g, sky.b, 1.f};
+    const float far = 1.f;
+    glClearNamedFramebufferfv(msaaTarget_.id(), GL_COLOR, 0, color);
+    glClearNamedFramebufferfv(msaaTarget_.id(), GL_DEPTH, 0, &far);
+}
+
+void DrawPass::depthPrepass(const SceneGpu& gpu) const {
+    glBindFramebuffer(GL_FRAMEBUFFER, msaaTarget_.id());
+    glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
+    glDepthMask(GL_TRUE);
+    glDepthFunc(GL_LESS);
+    opaqueProgram_.use();
+    for (const GpuMesh& m : gpu.meshes) {
+        glBindVertexArray(m.vertexArray.id());
+        glDrawElements(GL_TRIANGLES, m.indexCount, GL_UNSIGNED_INT, nullptr);
+    }
+    glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+}
+
+void DrawPass::resolveDepth() const {
+    // Multisampled depth resolves by picking one sample (GL_NEAREST is the only filter allowed).
+    glBlitNamedFramebuffer(msaaTarget_.id(), resolvedDepthTarget_.id(), 0, 0, width_, height_, 0, 0,
+                           width_, height_, GL_DEPTH_BUFFER_BIT, GL_NEAREST);
+    glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
+}
+
+void DrawPass::shadeOpaque(const SceneGpu& gpu, const SceneDescription& scene) const {
+    glBindFramebuffer(GL_FRAMEBUFFER, msaaTarget_.id());
+    // Same program and vertices as the pre-pass, so the depths match exactly (GLSL invariance
+    // within one program); nothing is written twice.
+    glDepthFunc(GL_LEQUAL);
+    glDepthMask(GL_FALSE);
+    opaqueProgram_.use();
+    opaqueProgram_.set("uAmbient", scene.light.ambient);
+    for (const GpuMesh& m : gpu.meshes) {
+        opaqueProgram_.set("uAlbedo", m.albedo);
+        glBindVertexArray(m.vertexArray.id());
+        glDrawElements(GL_TRIANGLES, m.indexCount, GL_UNSIGNED_INT, nullptr);
+    }
+    glDepthMask(GL_TRUE);
+    glDepthFunc(GL_LESS);
+}
+
+void DrawPass::drawBlades(const SceneGpu& gpu, const SceneDescription& scene,
+                          float pixelSize_perM) const {
+    const RenderSettings& r = scene.render;
+    glBindFramebuffer(GL_FRAMEBUFFER, msaaTarget_.id());
+    glDepthFunc(GL_LESS);
+    glDepthMask(GL_TRUE);
+    glDisable(GL_CULL_FACE);  // blades are two-sided
+    bladeProgram_.use();
+    bladeProgram_.set("uMaxTessLevel", r.maxTessLevel);
+    bladeProgram_.set("uAcrossSegments", r.displacement ? 2 : 1);
+    bladeProgram_.set("uShapeOverride", r.shapeOverride);
+    bladeProgram_.set("uDisplacement", r.displacement ? 1 : 0);
+    bladeProgram_.set("uPixelSize_perM", pixelSize_perM);
+    bladeProgram_.set("uMinWidth_px", r.minWidth_px);
+    bladeProgram_.set("uRootColor", r.rootColor);
+    bladeProgram_.set("uTipColor", r.tipColor);
+    bladeProgram_.set("uAmbient", scene.light.ambient);
+    bladeProgram_.set("uTranslucency", r.translucency);
+    bladeProgram_.set("uAoAtRoot", r.aoAtRoot);
+    glBindVertexArray(emptyVertexArray_.id());
+    glPatchParameteri(GL_PATCH_VERTICES, 1);
+    glMemoryBarrier(GL_COMMAND_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);
+    glBindBuffer(GL_DRAW_INDIRECT_BUFFER, gpu.drawCommand.id());
+    glDrawArraysIndirect(GL_PATCHES, nullptr);
+    glBindBuffer(GL_DRAW_INDIRECT_BUFFER, 0);
+}
+
+void DrawPass::resolveColor() const {
+    glBlitNamedFramebuffer(msaaTarget_.id(), resolvedColorTarget_.id(), 0, 0, width_, height_, 0, 0,
+                           width_, height_, GL_COLOR_BUFFER_BIT, GL_NEAREST);
+}
+
+cv::Mat DrawPass::readBack() const {
+    cv::Mat rgba(height_, width_, CV_8UC4);
+    glPixelStorei(GL_PACK_ALIGNMENT, 1);
+    glGetTextureImage(resolvedColor_.id(), 0, GL_RGBA, GL_UNSIGNED_BYTE,
+                      static_cast<GLsizei>(rgba.total() * 4), rgba.data);
+    cv::Mat bgr;
+    cv::cvtColor(rgba, bgr, cv::COLOR_RGBA2BGR);
+    cv::flip(bgr, bgr, 0);  // GL's first row is the bottom one
+    return bgr;
+}
+
+}  // namespace meadow::runtime

@@ -1,0 +1,44 @@
+#pragma once
+// The raster half of a frame: multisampled colour + depth target, depth pre-pass and shading of
+// the opaque meshes, tessellated blades from the indirect draw command, MSAA resolve and
+// read-back.
+#include <opencv2/core/mat.hpp>
+
+#include "gl/gl_object.h"
+#include "gl/shader_program.h"
+#include "meadow/runtime/scene.h"
+#include "scene_gpu.h"
+
+namespace meadow::runtime {
+
+class DrawPass {
+public:
+    DrawPass(int width_px, int height_px, int msaaSamples);
+
+    // Binds the multisampled target and clears it to the sky colour (display values) and far.
+    void begin(glm::vec3 skyDisplayColor) const;
+    // Opaque meshes into depth only; the single-sample copy feeds occlusion culling.
+    void depthPrepass(const SceneGpu& gpu) const;
+    void resolveDepth() const;
+    // Opaque meshes shaded where the pre-pass left their depth.
+    void shadeOpaque(const SceneGpu& gpu, const SceneDescription& scene) const;
+    // Blades of the visible-index buffer, as many as the indirect command says.
+    void drawBlades(const SceneGpu& gpu, const SceneDescription& scene, float pixelSize_perM) const;
+    void resolveColor() const;
+    [[nodiscard]] cv::Mat readBack() const;  // CV_8UC3 BGR, top row first
+
+    [[nodiscard]] const gl::Texture& depthTexture() const { return resolvedDepth_; }
+    [[nodiscard]] int width_px() const { return width_; }
+    [[nodiscard]] int height_px() const { return height_; }
+
+private:
+    int width_, height_, samples_;
+    gl::Renderbuffer msaaColor_, msaaDepth_;
+    gl::Framebuffer msaaTarget_;
+    gl::Texture resolvedColor_, resolvedDepth_;
+    gl::Framebuffer resolvedColorTarget_, resolvedDepthTarget_;
+    gl::ShaderProgram opaqueProgram_, bladeProgram_;
+    gl::VertexArray emptyVertexArray_;  // the blade draw has no vertex attributes
+};
+
+}  // namespace meadow::runtime

@@ -1,0 +1,12 @@
+// Opaque meshes (grass ground and props): drawn depth-only first, then shaded with depth EQUAL.
+layout(location = 0) in vec3 aPosition_m;
+layout(location = 1) in vec3 aNormal;
+
+layout(std140, binding = FRAME_UBO_BINDING) uniform Frame { FrameGpu frame; };
+
+out vec3 vNormal;
+
+void main() {
+    vNormal = aNormal;
+    gl_Position = frame.clipFromWorld * vec4(aPosition_m, 1.0);
+}
