@@ -4,7 +4,6 @@
 #include <array>
 #include <cctype>
 #include <fstream>
-#include <iterator>
 #include <opencv2/core.hpp>
 #include <opencv2/imgcodecs.hpp>
 #include <system_error>
@@ -56,13 +55,15 @@ std::vector<unsigned char> encodeDepthPng(const cv::Mat1w& depth, const fs::path
 }
 
 cv::Mat1w readDepthPng(const fs::path& file) {
-    std::ifstream in(file, std::ios::binary);
+    std::ifstream in(file, std::ios::binary | std::ios::ate);
     if (!in)
         throw CaptureError("cannot read " + file.string() +
                            ": check that it exists and is readable");
-    const std::vector<unsigned char> bytes{std::istreambuf_iterator<char>(in),
-                                           std::istreambuf_iterator<char>()};
-    if (in.bad())
+    const std::streamoff size = in.tellg();
+    std::vector<unsigned char> bytes(size > 0 ? static_cast<std::size_t>(size) : 0);
+    in.seekg(0);
+    if (!bytes.empty() &&
+        !in.read(reinterpret_cast<char*>(bytes.data()), static_cast<std::streamsize>(size)))
         throw CaptureError("reading " + file.string() + " failed: check the disk and retry");
     if (bytes.empty())
         throw CaptureError(file.string() +
@@ -76,20 +77,25 @@ cv::Mat1w readDepthPng(const fs::path& file) {
     const bool complete = std::search(bytes.begin() + kPngSignature.size(), bytes.end(),
                                       kPngEnd.begin(), kPngEnd.end()) != bytes.end();
 
+    // Checked before decoding, so the decoder never sees a file that is cut short.
+    if (!complete)
+        throw CaptureError(file.string() +
+                           " is truncated (it does not end with the PNG end marker): re-export "
+                           "the frame or remove it from the folder");
     cv::Mat decoded;
     try {
         decoded = cv::imdecode(bytes, cv::IMREAD_UNCHANGED);
     } catch (const cv::Exception&) {
         decoded.release();  // reported below like any other undecodable file
     }
-    if (decoded.empty() || !complete)
+    if (decoded.empty())
         throw CaptureError(file.string() +
-                           (complete ? " is corrupt (OpenCV cannot decode it)"
-                                     : " is truncated (it does not end with the PNG end marker)") +
-                           ": re-export the frame or remove it from the folder");
+                           " is corrupt (OpenCV cannot decode it): re-export the frame or "
+                           "remove it from the folder");
     if (decoded.type() != CV_16UC1)
-        throw CaptureError(file.string() + " is a " + describeType(decoded) + " PNG, but " +
-                           kFrameFormatHint + ": export the depth as 16-bit greyscale");
+        throw CaptureError(file.string() + (decoded.depth() == CV_8U ? " is an " : " is a ") +
+                           describeType(decoded) + " PNG, but " + kFrameFormatHint +
+                           ": export the depth as 16-bit greyscale");
     return decoded;
 }
 

@@ -73,7 +73,6 @@ std::unique_ptr<DepthSource> openRecordingFolder(const fs::path& folder,
                            "recording describes itself");
 
     std::vector<fs::path> frames;
-    frames.reserve(static_cast<std::size_t>(info.frameCount));
     std::error_code ec;
     for (int i = 0; i < info.frameCount; ++i) {
         fs::path file = framePath(folder, i);

@@ -145,6 +145,8 @@ TEST(RecordingErrors, TruncatedFrameNamesTheFileAtEveryCut) {
         spit(frame, whole.substr(0, keep));
         const std::string message = errorReading(folder.string());
         EXPECT_TRUE(mentions(message, frame.string())) << "kept " << keep << ": " << message;
+        EXPECT_TRUE(mentions(message, keep < 8 ? "not a PNG" : "truncated"))
+            << "kept " << keep << ": " << message;
     }
 }
 
@@ -217,6 +219,13 @@ TEST(RecordingErrors, MissingFrameNamesTheFile) {
     EXPECT_TRUE(mentions(message, (folder / "depth" / "000001.png").string())) << message;
 }
 
+TEST(RecordingErrors, HugeFrameCountNamesTheFirstMissingFrame) {
+    const fs::path folder = validRecording("huge_count");
+    editJson(folder, [](nlohmann::json& j) { j["frame_count"] = 2147483647; });
+    const std::string message = errorReading(folder.string());
+    EXPECT_TRUE(mentions(message, (folder / "depth" / "000002.png").string())) << message;
+}
+
 // --- folders ---------------------------------------------------------------------------------
 
 TEST(RecordingErrors, PlainFolderWithoutOptionsAsksForIntrinsicsAndDepthUnit) {
@@ -268,10 +277,6 @@ TEST(RecordingErrors, SingleFileInsteadOfAFolderNamesIt) {
 
 TEST(RecordingErrors, EmptyUriSaysWhatToGive) {
     EXPECT_TRUE(mentions(errorReading(""), "recording folder"));
-}
-
-TEST(RecordingErrors, OniFileThatCannotBeOpenedIsACaptureError) {
-    (void)errorReading((freshDir("oni") / "missing.oni").string());
 }
 
 // --- recording.json --------------------------------------------------------------------------
