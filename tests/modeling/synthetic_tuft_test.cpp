@@ -10,6 +10,7 @@
 #include <opencv2/imgproc.hpp>
 #include <set>
 
+#include "meadow/capture/atomic_file.h"
 #include "meadow/capture/recording.h"
 #include "meadow/capture/simulated_sensor.h"
 #include "meadow/modeling/error.h"
@@ -98,7 +99,9 @@ TEST(SyntheticTuft, EveryPresetBuildsPlausibleBladesFacingTheCamera) {
             EXPECT_LT(tip.y, 480.f) << name << " blade " << b.id << " tip below the image";
             // The face plane faces the camera: its normal at the base is mostly along the view.
             const glm::vec3 n = glm::mat3(b.cameraFromBlade) * glm::vec3(0, 0, 1);
-            if (preset->name != "tilted") EXPECT_GT(std::abs(n.z), 0.8f) << name << " " << b.id;
+            if (preset->name != "tilted") {
+                EXPECT_GT(std::abs(n.z), 0.8f) << name << " " << b.id;
+            }
         }
     }
     EXPECT_EQ(findSynthPreset("nope"), nullptr);
@@ -267,4 +270,16 @@ TEST(SynthTruth, JsonRoundTripsAndRejectsOtherVersions) {
     }
     EXPECT_THROW((void)parseSynthTruth("{", "x"), ModelingError);
     EXPECT_THROW((void)readSynthTruth("/nonexistent/blades.json"), ModelingError);
+}
+
+TEST(Synthesize, RefusesAFolderHoldingSomethingElseAndLeavesItAlone) {
+    const fs::path out = freshDir("foreign");
+    fs::create_directories(out / "truth");
+    meadow::writeFileAtomically(out / "truth" / "notes.txt", "mine");
+    SynthOptions options;
+    options.preset = "sharp-tip";
+    options.out = out;
+    options.frames = 1;
+    EXPECT_THROW((void)synthesize(options), meadow::Error);
+    EXPECT_TRUE(fs::exists(out / "truth" / "notes.txt"));
 }
