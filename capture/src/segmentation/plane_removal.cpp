@@ -45,6 +45,7 @@ constexpr int kExtraPlaneAttempts = 2;
 // Plane inliers are cleared only in connected regions of at least this share of the image
 // (0.5 % = 1536 px at 640x480): ground, not the band where a plane crosses a blade.
 constexpr float kMinGroundComponentFraction = 0.005f;
+constexpr double kSmallGroundMeanDistanceFraction = 0.3;
 
 struct Plane {
     Eigen::Vector4f coefficients;  // n.x + d = 0, |n| = 1
@@ -94,6 +95,7 @@ int clearPlane(const cv::Mat1w& depth_mm, const Intrinsics& K, const Plane& plan
                float tolerance_m, cv::Mat1b& mask) {
     const Eigen::Vector4f& c = plane.coefficients;
     cv::Mat1b inliers(mask.size(), std::uint8_t{0});
+    cv::Mat1f distance_m(mask.size(), 0.f);
     for (int y = 0; y < depth_mm.rows; ++y) {
         const auto* m = mask[y];
         const auto* d = depth_mm[y];
@@ -102,7 +104,11 @@ int clearPlane(const cv::Mat1w& depth_mm, const Intrinsics& K, const Plane& plan
             if (m[x] == 0 || d[x] == 0) continue;
             const auto v = K.backProject(static_cast<float>(x), static_cast<float>(y),
                                          static_cast<float>(d[x]) / kMillimetresPerMetre);
-            if (std::abs(c[0] * v.x + c[1] * v.y + c[2] * v.z + c[3]) <= tolerance_m) in[x] = 255;
+            const float e = std::abs(c[0] * v.x + c[1] * v.y + c[2] * v.z + c[3]);
+            if (e <= tolerance_m) {
+                in[x] = 255;
+                distance_m(y, x) = e;
+            }
         }
     }
     cv::Mat1i labels;
@@ -110,9 +116,20 @@ int clearPlane(const cv::Mat1w& depth_mm, const Intrinsics& K, const Plane& plan
     const int n = cv::connectedComponentsWithStats(inliers, labels, stats, centroids, 8, CV_32S);
     const int minArea =
         static_cast<int>(kMinGroundComponentFraction * static_cast<float>(mask.total()));
+    // Small regions (ground seen between blades) are cleared only when they lie on the plane:
+    // a slab through a blade spreads its distances over the whole tolerance (mean |d| about
+    // tolerance / 2), ground reads the plane up to sensor noise.
+    std::vector<double> sumDistance(static_cast<size_t>(n), 0.0);
+    for (int y = 0; y < mask.rows; ++y)
+        for (int x = 0; x < mask.cols; ++x)
+            sumDistance[static_cast<size_t>(labels(y, x))] += distance_m(y, x);
     std::vector<char> clear(static_cast<size_t>(n), 0);
-    for (int i = 1; i < n; ++i)
-        clear[static_cast<size_t>(i)] = stats.at<int>(i, cv::CC_STAT_AREA) >= minArea;
+    for (int i = 1; i < n; ++i) {
+        const int area = stats.at<int>(i, cv::CC_STAT_AREA);
+        const double meanDistance = sumDistance[static_cast<size_t>(i)] / std::max(1, area);
+        clear[static_cast<size_t>(i)] =
+            area >= minArea || meanDistance < kSmallGroundMeanDistanceFraction * tolerance_m;
+    }
     int cleared = 0;
     for (int y = 0; y < mask.rows; ++y) {
         auto* m = mask[y];
@@ -145,8 +162,11 @@ float solidity(const cv::Mat1w& depth_mm, const Intrinsics& K, const Plane& plan
         }
     const int all = cv::countNonZero(inliers);
     if (all == 0) return 0.f;
+    // Closing first: single missing readings (dropouts) must not make the ground look porous.
     cv::Mat1b interior;
-    cv::erode(inliers, interior, cv::Mat());
+    cv::morphologyEx(inliers, interior, cv::MORPH_CLOSE, cv::Mat());
+    cv::erode(interior, interior, cv::Mat());
+    interior &= inliers;
     return static_cast<float>(cv::countNonZero(interior)) / static_cast<float>(all);
 }
 

@@ -52,12 +52,13 @@ std::string toString(ReferencePoint);
 struct SegmenterParams {
     // --- Depth band (Sec. 4.1). nearDepth_m < farDepth_m sets the band; both 0 = automatic:
     // the nearest histogram mode holding >= minModeFraction of the valid pixels (and at least
-    // minRegionArea_px), widened to the histogram valleys on both sides. The fraction is small
-    // because a back wall can hold 30x the tuft's pixels.
+    // minRegionArea_px) that does not span most image columns (that is ground or a wall seen
+    // edge-on), widened to the histogram valleys on both sides. The fraction is small because a
+    // back wall can hold 100x the pixels of a single blade.
     float nearDepth_m = 0.0f;
     float farDepth_m = 0.0f;
     float histogramBin_m = 0.01f;
-    float minModeFraction = 0.01f;
+    float minModeFraction = 0.002f;
     float maxBandHalfWidth_m =
         0.15f;  // the automatic band spans at most this each side of its mode (a tuft's depth)
     // The automatic band then grows into neighbouring pixels whose depth differs by at most
