@@ -31,7 +31,8 @@ std::string toString(BladeFlag flag) {
 namespace segmentation {
 
 namespace {
-constexpr int kSpineSamples = 16;  // centre-line samples for the curl test
+constexpr int kSpineSamples =
+    8;  // centre-line samples for the curl test (few: noise must not add turns)
 constexpr float kRadToDeg = 180.0f / std::numbers::pi_v<float>;
 constexpr int kHoleNeighbourhood_px = 2;  // a blade this close to an enclosed gap crosses it
 constexpr size_t kMinBladesForWidthMedian = 3;

@@ -67,6 +67,8 @@ struct SegmenterParams {
     float bandGrowStep_m = 0.015f;
 
     // --- Ground / background plane removal.
+    // Measured: organized multi-plane is 2-3x faster on clean frames but finds no ground once
+    // 2-3 % of the readings drop out (its integral-image normals break at holes); RANSAC does.
     PlaneMethod planeMethod = PlaneMethod::Ransac;
     float planeDistance_m = 0.012f;  // inlier tolerance; > sensor noise at 1-1.5 m
     float minPlaneFraction = 0.02f;  // a plane must hold this share of the masked pixels (the
