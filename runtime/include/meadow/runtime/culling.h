@@ -16,4 +16,12 @@ struct CullSettings {
     float occlusionBias_m = 0.05f;      // a point must be this far behind the opaque depth
 };
 
+class GlContext;
+class Renderer;
+
+// Plugs the GPU culling pass (cull.comp) into `renderer`: the frame's camera, the scene's
+// culling settings and the opaque depth pre-pass decide which blades are drawn. Throws
+// RuntimeError when the shader does not compile.
+void installCullingPass(Renderer& renderer, GlContext& context);
+
 }  // namespace meadow::runtime

@@ -44,4 +44,12 @@ struct CollisionSphere {
     float radius_m = 0.f;
 };
 
+class GlContext;
+class Renderer;
+
+// Plugs the GPU physics pass (physics.comp) into `renderer`, with settings from its scene file
+// (gravity, collision decay, wind) and the scene's colliders. Throws RuntimeError when the
+// shader does not compile.
+void installPhysicsPass(Renderer& renderer, GlContext& context);
+
 }  // namespace meadow::runtime
