@@ -24,7 +24,7 @@ TEST(PhysicsRendererGLTest, InstalledPassesSimulateAndCullEveryBladeOnceInTheRen
     Renderer renderer(context, scene);
     installPhysicsPass(renderer, context);
     installCullingPass(renderer, context);
-    for (int frame = 0; frame < 4; ++frame) {
+    for (int frame = 0; frame < 2; ++frame) {
         const RenderedFrame f = renderer.renderFrame(frame);
         const FrameStats& s = f.stats;
         SCOPED_TRACE("frame " + std::to_string(frame));
