@@ -108,7 +108,11 @@ Score run(const std::string& presetName, float noiseScale, std::uint64_t seed,
     capture::DepthFrame frame;
     frame.depth_mm = sim.depth_mm;
     frame.intrinsics = spec.camera.intrinsics;
-    const Segmentation s = capture::Segmenter(params).segment(frame);
+    capture::SegmenterParams used = params;
+    if (const char* ref = std::getenv("MEADOW_SEGMENTATION_REFERENCE");
+        ref && std::string(ref) == "centre")
+        used.reference = capture::ReferencePoint::ContourCentre;  // for the README's comparison
+    const Segmentation s = capture::Segmenter(used).segment(frame);
     if (const char* folder = std::getenv("MEADOW_SEGMENTATION_DEBUG"))
         capture::writeDebugOverlay(
             std::filesystem::path(folder) / (presetName + "_n" + std::to_string(noiseScale) + "_s" +
