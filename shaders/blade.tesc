@@ -9,7 +9,7 @@ uniform float uMaxTessLevel;      // segments along the blade at most
 uniform int uAcrossSegments;      // 1, or 2 with 3D displacement (needs a vertex at u = 0.5)
 
 in flat uint vBladeIndex[];
-out flat uint tcBladeIndex[];
+patch out uint tcBladeIndex;  // one blade per patch
 
 vec2 toPixels(vec3 world) {
     vec4 clip = frame.clipFromWorld * vec4(world, 1.0);
@@ -19,7 +19,7 @@ vec2 toPixels(vec3 world) {
 
 void main() {
     uint i = vBladeIndex[0];
-    tcBladeIndex[gl_InvocationID] = i;
+    tcBladeIndex = i;
     BladeGpu blade = blades[i];
     vec3 v0 = blade.v0_height.xyz, v1 = blade.v1_width.xyz, v2 = blade.v2_stiffness.xyz;
     // The control polygon bounds the curve's length from above, the chord from below: their mean.

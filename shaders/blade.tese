@@ -12,7 +12,7 @@ uniform bool uDisplacement;       // 3D displacement along the normal (Sec. 6.2)
 uniform float uPixelSize_perM;    // world size of one pixel at 1 m distance (m/m)
 uniform float uMinWidth_px;       // width correction: blades never project thinner than this
 
-in flat uint tcBladeIndex[];
+patch in uint tcBladeIndex;
 out vec3 teWorld_m;
 out vec3 teNormal;
 out float teHeightFraction;       // v
@@ -42,7 +42,7 @@ float profileWidth(uint archetype, float v) {
 float displacementRidge(float u, float v) { return 0.5 - abs(u - 0.5) * (1.0 - v); }
 
 void main() {
-    uint i = tcBladeIndex[0];
+    uint i = tcBladeIndex;
     BladeGpu blade = blades[i];
     uint archetype = uint(rests[i].restV1_archetype.w);
     float u = gl_TessCoord.x, v = gl_TessCoord.y;

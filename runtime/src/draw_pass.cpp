@@ -20,6 +20,13 @@ gl::ShaderProgram makeOpaqueProgram() {
                               .defines = {}});
 }
 
+gl::ShaderProgram makeChunkProgram() {
+    return gl::ShaderProgram({.label = "blade draw chunks",
+                              .stages = {{GL_COMPUTE_SHADER, "blade_chunks.comp"}},
+                              .commonFiles = {},
+                              .defines = {}});
+}
+
 gl::ShaderProgram makeBladeProgram() {
     return gl::ShaderProgram(
         {.label = "blades",
@@ -54,6 +61,7 @@ DrawPass::DrawPass(int width_px, int height_px, int msaaSamples)
       resolvedDepthTarget_(gl::Framebuffer::create()),
       opaqueProgram_(makeOpaqueProgram()),
       bladeProgram_(makeBladeProgram()),
+      chunkProgram_(makeChunkProgram()),
       emptyVertexArray_(gl::VertexArray::create()) {
     GLint maxSamples = 1;
     glGetIntegerv(GL_MAX_SAMPLES, &maxSamples);
@@ -132,7 +140,7 @@ void DrawPass::shadeOpaque(const SceneGpu& gpu, const SceneDescription& scene) c
 }
 
 void DrawPass::drawBlades(const SceneGpu& gpu, const SceneDescription& scene,
-                          float pixelSize_perM) const {
+                          float pixelSize_perM) {
     const RenderSettings& r = scene.render;
     glBindFramebuffer(GL_FRAMEBUFFER, msaaTarget_.id());
     glDepthFunc(GL_LESS);
@@ -153,8 +161,21 @@ void DrawPass::drawBlades(const SceneGpu& gpu, const SceneDescription& scene,
     glBindVertexArray(emptyVertexArray_.id());
     glPatchParameteri(GL_PATCH_VERTICES, 1);
     glMemoryBarrier(GL_COMMAND_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);
-    glBindBuffer(GL_DRAW_INDIRECT_BUFFER, gpu.drawCommand.id());
-    glDrawArraysIndirect(GL_PATCHES, nullptr);
+    // The culling pass's one command becomes chunkCount commands of BLADE_DRAW_CHUNK blades.
+    const std::uint32_t chunkCount = (gpu.bladeCount + BLADE_DRAW_CHUNK - 1) / BLADE_DRAW_CHUNK;
+    if (chunkCapacity_ < chunkCount) {
+        chunks_ = gl::Buffer::create();
+        glNamedBufferStorage(chunks_.id(), chunkCount * sizeof(gpu::DrawCommandGpu), nullptr, 0);
+        chunkCapacity_ = chunkCount;
+    }
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, DRAW_CHUNK_SSBO_BINDING, chunks_.id());
+    chunkProgram_.use();
+    chunkProgram_.set("uChunkCount", static_cast<unsigned>(chunkCount));
+    glDispatchCompute((chunkCount + BLADE_WORKGROUP_SIZE - 1) / BLADE_WORKGROUP_SIZE, 1, 1);
+    glMemoryBarrier(GL_COMMAND_BARRIER_BIT);
+    bladeProgram_.use();
+    glBindBuffer(GL_DRAW_INDIRECT_BUFFER, chunks_.id());
+    glMultiDrawArraysIndirect(GL_PATCHES, nullptr, static_cast<GLsizei>(chunkCount), 0);
     glBindBuffer(GL_DRAW_INDIRECT_BUFFER, 0);
 }
 

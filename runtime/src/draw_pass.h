@@ -23,7 +23,7 @@ public:
     // Opaque meshes shaded where the pre-pass left their depth.
     void shadeOpaque(const SceneGpu& gpu, const SceneDescription& scene) const;
     // Blades of the visible-index buffer, as many as the indirect command says.
-    void drawBlades(const SceneGpu& gpu, const SceneDescription& scene, float pixelSize_perM) const;
+    void drawBlades(const SceneGpu& gpu, const SceneDescription& scene, float pixelSize_perM);
     void resolveColor() const;
     [[nodiscard]] cv::Mat readBack() const;  // CV_8UC3 BGR, top row first
 
@@ -37,7 +37,9 @@ private:
     gl::Framebuffer msaaTarget_;
     gl::Texture resolvedColor_, resolvedDepth_;
     gl::Framebuffer resolvedColorTarget_, resolvedDepthTarget_;
-    gl::ShaderProgram opaqueProgram_, bladeProgram_;
+    gl::ShaderProgram opaqueProgram_, bladeProgram_, chunkProgram_;
+    gl::Buffer chunks_;  // DrawCommandGpu[chunkCapacity_]
+    std::uint32_t chunkCapacity_ = 0;
     gl::VertexArray emptyVertexArray_;  // the blade draw has no vertex attributes
 };
 

@@ -25,6 +25,10 @@ using mat4 = glm::mat4;
 #define CULL_STATS_SSBO_BINDING 5
 #define PATCH_SSBO_BINDING 6
 #define COLLIDER_SSBO_BINDING 7
+#define DRAW_CHUNK_SSBO_BINDING 8  // draw pass only: the chunked draw commands
+
+// Blades per indirect draw command (the draw pass splits the culling output into such chunks).
+#define BLADE_DRAW_CHUNK 512
 
 // Uniform buffer binding points.
 #define FRAME_UBO_BINDING 0
