@@ -78,7 +78,16 @@ int framesInOniFile(const fs::path& oniPath) {
     ::openni::VideoStream stream;
     if (stream.create(device, ::openni::SENSOR_DEPTH) != ::openni::STATUS_OK) return -1;
     ::openni::PlaybackControl* playback = device.getPlaybackControl();
-    return playback == nullptr ? -1 : playback->getNumberOfFrames(stream);
+    if (playback == nullptr) return -1;
+    const int frames = playback->getNumberOfFrames(stream);
+    // Debian's file driver walks its stream list without a lock while no stream has started,
+    // and can crash when one is deleted meanwhile; a started stream in manual mode parks its
+    // player thread on a wait instead.
+    playback->setRepeatEnabled(false);
+    playback->setSpeed(-1.f);
+    stream.start();
+    stream.stop();
+    return frames;
 }
 
 // Serves `uri` through meadow's driver into a fresh .oni file at `oniPath`; returns the frames

@@ -9,7 +9,9 @@
 #include <cstdint>
 #include <cstring>
 #include <filesystem>
+#include <mutex>
 #include <opencv2/core.hpp>
+#include <set>
 
 #include "meadow/capture/error.h"
 #include "openni_runtime.h"
@@ -50,10 +52,15 @@ float focalLengthFromFieldOfView_px(int size_px, float fieldOfView_rad) {
 class OpenNiSource final : public DepthSource {
 public:
     explicit OpenNiSource(const std::string& uri);
+    ~OpenNiSource() override;
+    OpenNiSource(const OpenNiSource&) = delete;
+    OpenNiSource& operator=(const OpenNiSource&) = delete;
     [[nodiscard]] const RecordingInfo& info() const override { return info_; }
     std::optional<DepthFrame> next() override;
 
 private:
+    void open(const std::string& uri);
+    void close();
     void openDevice(const std::string& uri);
     void chooseDepthMode();
     void readGeometry();
@@ -66,6 +73,12 @@ private:
     ::openni::VideoStream stream_;
     std::string name_;  // "file X" / "device Y", for messages
     bool isFile_ = false;
+    // Canonical path while registered in playingFiles(); released on destruction, also when
+    // the constructor throws.
+    struct PlayingFile {
+        std::string path;
+        ~PlayingFile();
+    } playingFile_;
     bool mirrorInSoftware_ = false;
     int expectedFrames_ = -1;  // -1: unknown (live device, unfinished file)
     int framesRead_ = 0;
@@ -73,8 +86,42 @@ private:
     RecordingInfo info_;
 };
 
+// Files being played in this process. OpenNI2 opens a file once per process and hands the same
+// player to every opener, so two sources of one file would steal each other's frames.
+std::mutex& playingFilesMutex() {
+    static std::mutex m;
+    return m;
+}
+std::set<std::string>& playingFiles() {
+    static std::set<std::string> files;
+    return files;
+}
+
+OpenNiSource::~OpenNiSource() { close(); }
+
+void OpenNiSource::close() {
+    stream_.stop();
+    stream_.destroy();
+    device_.close();
+}
+
+OpenNiSource::PlayingFile::~PlayingFile() {
+    if (path.empty()) return;
+    std::lock_guard lock(playingFilesMutex());
+    playingFiles().erase(path);
+}
+
 OpenNiSource::OpenNiSource(const std::string& uri) {
     runtime_ = ni::Runtime::acquire();
+    try {
+        open(uri);
+    } catch (...) {
+        close();  // in the safe order; members alone would delete the stream first
+        throw;
+    }
+}
+
+void OpenNiSource::open(const std::string& uri) {
     openDevice(uri);
 
     if (!device_.hasSensor(::openni::SENSOR_DEPTH))
@@ -131,6 +178,15 @@ void OpenNiSource::openDevice(const std::string& uri) {
         std::error_code ec;
         if (!fs::is_regular_file(uri, ec))
             throw CaptureError("cannot open " + uri + ": no such file; check the path");
+        const std::string canonical = fs::weakly_canonical(uri, ec).string();
+        {
+            std::lock_guard lock(playingFilesMutex());
+            if (!playingFiles().insert(canonical).second)
+                throw CaptureError("cannot play " + uri + " twice at once: OpenNI2 shares one " +
+                                   "player per file within a process; finish or close the " +
+                                   "other source of it first");
+        }
+        playingFile_.path = canonical;
         if (!fs::is_regular_file(ni::driverFolder() / "libOniFile.so.0", ec))
             throw CaptureError("cannot play " + uri + ": OpenNI2's file driver libOniFile.so.0 " +
                                "is missing from " + ni::driverFolder().string() +
@@ -236,6 +292,13 @@ std::optional<DepthFrame> OpenNiSource::next() {
     if (expectedFrames_ >= 0 && framesRead_ >= expectedFrames_) {
         ended_ = true;
         return std::nullopt;
+    }
+    if (isFile_ && framesRead_ == expectedFrames_ - 1) {
+        // Before asking for the last frame, let the player wrap around: after it, it then parks
+        // on frame 1 waiting to be asked (which nobody does). Without repeat, Debian's file
+        // driver spins at the end of the file calling into OpenNI2 and walking its stream list
+        // unlocked, and tearing the stream down meanwhile can crash the process.
+        device_.getPlaybackControl()->setRepeatEnabled(true);
     }
     ::openni::VideoStream* streams[] = {&stream_};
     int ready = -1;
