@@ -9,9 +9,11 @@
 
 #include "commands.h"
 #include "meadow/capture/atomic_file.h"
+#include "meadow/runtime/culling.h"
 #include "meadow/runtime/error.h"
 #include "meadow/runtime/frame_stats.h"
 #include "meadow/runtime/gl_context.h"
+#include "meadow/runtime/physics.h"
 #include "meadow/runtime/renderer.h"
 #include "meadow/runtime/scene.h"
 #include "progress.h"
@@ -47,6 +49,8 @@ void runRender(const RenderArgs& args) {
 
     runtime::GlContext context;
     runtime::Renderer renderer(context, scene);
+    runtime::installPhysicsPass(renderer, context);
+    runtime::installCullingPass(renderer, context);
     std::cerr << "meadow render: " << renderer.bladeCount() << " blades in "
               << renderer.patchCount() << " patches on " << context.renderer() << '\n';
 
