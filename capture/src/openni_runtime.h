@@ -20,10 +20,11 @@ inline constexpr const char* kMeadowDriverFileName = "libMeadowRecordingDevice.s
 inline constexpr const char* kPrivateFolderVariable = "MEADOW_OPENNI2_DIR";
 inline constexpr const char* kRecordingVariable = "MEADOW_OPENNI_RECORDING";
 
-// Holding one keeps OpenNI2 initialised; the last holder to go shuts it down.
+// Every user of OpenNI2 holds one. The first acquire() initialises OpenNI2, which then stays
+// initialised until the process ends (see ~Runtime for why it is never shut down).
 class Runtime {
 public:
-    // Initialises OpenNI2 unless a holder exists already. Throws CaptureError when the driver
+    // Initialises OpenNI2 unless done already. Throws CaptureError when the driver
     // folder is missing or OpenNI2 refuses to start.
     static std::shared_ptr<Runtime> acquire();
     ~Runtime();
