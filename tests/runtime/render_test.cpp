@@ -74,5 +74,21 @@ TEST(RenderGLTest, SameSceneRendersTheSameImageTwice) {
     EXPECT_EQ(cv::norm(first, second, cv::NORM_INF), 0.0);
 }
 
+TEST(RenderGLTest, EveryAnalyticShapeAndDisplacementDrawsGrass) {
+    GlContext context;
+    for (int shape = 0; shape < 4; ++shape) {
+        SceneDescription scene = tinyMeadow();
+        scene.render.shapeOverride = shape;
+        scene.render.displacement = shape % 2 == 1;
+        Renderer renderer(context, scene);
+        const cv::Mat image = renderer.renderFrame(0).image_bgr;
+        int green = 0;
+        for (int y = image.rows / 2; y < image.rows; ++y)
+            for (int x = 0; x < image.cols; ++x) green += isGreen(image.at<cv::Vec3b>(y, x));
+        EXPECT_GT(green, image.total() / 8)
+            << "shape " << shape << " displacement " << scene.render.displacement;
+    }
+}
+
 }  // namespace
 }  // namespace meadow::runtime
