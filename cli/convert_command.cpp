@@ -29,12 +29,11 @@
 
 #include "commands.h"
 #include "meadow/capture/error.h"
+#include "meadow/capture/openni.h"
 #include "meadow/capture/recording.h"
 #include "progress.h"
 // capture's OpenNI2 conversions are private to capture/ (they would need a public header
 // meadow/capture/openni.h); the CLI is their only user.
-#include "../capture/src/openni_convert.h"
-#include "../capture/src/openni_runtime.h"
 
 namespace meadow::cli {
 

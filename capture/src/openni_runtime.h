@@ -11,14 +11,9 @@
 #include <memory>
 #include <string>
 
-namespace meadow::capture::ni {
+#include "meadow/capture/openni.h"
 
-// File name of meadow's driver inside a driver folder.
-inline constexpr const char* kMeadowDriverFileName = "libMeadowRecordingDevice.so.0";
-// Environment variables: where the private driver folder is (overrides the build-tree path),
-// and the recording folder meadow's driver lists as its device.
-inline constexpr const char* kPrivateFolderVariable = "MEADOW_OPENNI2_DIR";
-inline constexpr const char* kRecordingVariable = "MEADOW_OPENNI_RECORDING";
+namespace meadow::capture::ni {
 
 // Every user of OpenNI2 holds one. The first acquire() initialises OpenNI2, which then stays
 // initialised until the process ends (see ~Runtime for why it is never shut down).
@@ -37,17 +32,5 @@ private:
 
 // OpenNI's own last error text, whitespace trimmed, or "no details from OpenNI2".
 std::string lastError();
-
-// Folder of the libOpenNI2.so.0 loaded into this process, and the driver folder beside it.
-std::filesystem::path loadedLibraryFolder();
-std::filesystem::path driverFolder();
-// True when meadow's driver sits in driverFolder().
-bool meadowDriverInstalled();
-
-// The private driver folder (holding lib/libOpenNI2.so.0 and lib/OpenNI2/Drivers/): the value
-// of MEADOW_OPENNI2_DIR if set, else the one the build made. Empty when neither exists.
-std::filesystem::path privateFolder();
-// One sentence telling a user how to get meadow's driver loaded.
-std::string howToLoadMeadowDriver();
 
 }  // namespace meadow::capture::ni
