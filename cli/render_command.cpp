@@ -9,6 +9,7 @@
 
 #include "commands.h"
 #include "meadow/capture/atomic_file.h"
+#include "meadow/modeling/archetype_library.h"
 #include "meadow/runtime/culling.h"
 #include "meadow/runtime/error.h"
 #include "meadow/runtime/frame_stats.h"
@@ -25,12 +26,19 @@ struct RenderArgs {
     std::string scene;
     std::string out;
     int frames = 1;
-    std::string size;  // "WxH", empty = the scene's
+    std::string size;     // "WxH", empty = the scene's
+    std::string library;  // archetype library replacing the scene's archetypes, empty = keep
 };
 
 void runRender(const RenderArgs& args) {
     namespace fs = std::filesystem;
     runtime::SceneDescription scene = runtime::loadSceneDescription(args.scene);
+    if (!args.library.empty()) {
+        // A captured library replaces the scene's archetypes; each archetype is equally likely,
+        // since the scene's weights name the archetypes it was written for.
+        scene.archetypes = modeling::loadArchetypeLibrary(args.library).archetypes;
+        scene.archetypeWeights.assign(scene.archetypes.size(), 1.f);
+    }
     if (!args.size.empty()) {
         int w = 0, h = 0;
         char x = 0, extra = 0;
@@ -94,6 +102,9 @@ void addRenderCommand(CLI::App& app) {
                      "Number of frames (time advances 1 / render.frame_rate_hz each)")
         ->check(CLI::Range(1, 1000000));
     render->add_option("--size", args->size, "Image size WIDTHxHEIGHT, overrides render.size_px");
+    render->add_option("--library", args->library,
+                       "Archetype library (from `meadow capture`) to plant instead of the scene's "
+                       "archetypes, all equally likely");
     render->callback([args] { runRender(*args); });
 }
 

@@ -16,4 +16,4 @@ echo "2/2 render: samples/scenes/meadow.json with that library -> $out/render/"
 "$meadow" render "$here/scenes/meadow.json" --library "$out/library.json" --out "$out/render" \
   --frames 1 --size 1280x720
 
-echo "done: the meadow is $out/render/frame_000000.png"
+echo "done: the meadow is $out/render/frame_00000.png"
