@@ -35,7 +35,9 @@ TEST(PhysicsRendererGLTest, InstalledPassesSimulateAndCullEveryBladeOnceInTheRen
         EXPECT_GT(s.bladesDrawn, 0u);
         EXPECT_LT(s.bladesDrawn, s.bladesTotal) << "nothing was culled";
         EXPECT_GT(s.gpuCulling_ms, 0.0);
-        if (frame > 0) EXPECT_GT(s.gpuPhysics_ms, 0.0);
+        if (frame > 0) {  // braces: EXPECT_* expands to an if/else (-Wdangling-else)
+            EXPECT_GT(s.gpuPhysics_ms, 0.0);
+        }
     }
 }
 
