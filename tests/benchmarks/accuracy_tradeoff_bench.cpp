@@ -89,7 +89,7 @@ struct Plan {
     std::vector<std::string> bladeTypes = kBladeTypePresets;
     std::vector<float> noises = kNoiseScales;
     std::vector<float> distances_m = kModelingDistances_m;
-    int segmentationSeeds = 3;
+    int segmentationSeeds = 5;
     int modelingSeeds = 2;
     int tradeoffSeeds = 2;
     int repetitions = 5;
@@ -583,7 +583,7 @@ void captureTradeoff(const Plan& plan, const std::vector<Scene>& scenes, const f
         }
         const double recall = truth ? static_cast<double>(matched) / truth : 1.0;
         const double precision = found ? static_cast<double>(matched) / found : 1.0;
-        rows.push_back({c.knob, mean(wall),
+        rows.push_back({c.knob, mean(cpu),
                         c.knob + ',' + c.value + ',' + fixed(mean(wall), 2) + ',' +
                             fixed(mean(cpu), 2) + ',' + fixed(median(iou), 4) + ',' +
                             fixed(recall, 3) + ',' + fixed(precision, 3) + '\n'});
@@ -598,8 +598,8 @@ void captureTradeoff(const Plan& plan, const std::vector<Scene>& scenes, const f
     writeText(out / "capture_tradeoff.csv", csv.str());
     writeText(out / "capture_tradeoff.md", md.str());
     chart(out / "capture_tradeoff.csv", out / "capture_tradeoff.png",
-          "Segmentation: median blade IoU vs time (blade-type presets, nominal noise)", "time_ms",
-          "median_iou", "knob", "time per segmentation (ms, wall clock, one thread)",
+          "Segmentation: median blade IoU vs time (blade-type presets, nominal noise)", "cpu_ms",
+          "median_iou", "knob", "CPU time per segmentation (ms, one thread; wall time in the CSV)",
           "median blade IoU (pixels, vs truth)");
 }
 
@@ -632,11 +632,12 @@ std::string modelingRow(const std::vector<BladeError>& e) {
         tip.push_back(b.tipS);
     }
     std::ostringstream row;
+    if (e.empty()) return ",,,,,,,,,,,";  // no fitted blade matched: nothing measured
     row << fixed(mean(v0), 2) << ',' << fixed(mean(v1), 2) << ',' << fixed(mean(v2), 2) << ','
         << fixed(std::sqrt(mean(tipSq)), 2) << ',' << fixed(kPercent * mean(heightAbs), 2) << ','
         << fixed(kPercent * mean(heightSigned), 2) << ',' << fixed(kPercent * mean(width), 2) << ','
         << fixed(median(off), 2) << ',' << fixed(mean(knots), 2) << ',' << fixed(median(base), 3)
-        << ',' << fixed(median(tip), 3);
+        << ',' << fixed(median(tip), 3) << ',' << fixed(median(v2), 2);
     return row.str();
 }
 
@@ -650,12 +651,13 @@ void modelingAccuracy(const Plan& plan, const fs::path& out, Fig12Input& fig12) 
     const std::string header =
         "v0_error_mm,v1_error_mm,v2_error_mm,tip_rms_mm,height_error_abs_pct,"
         "height_error_signed_pct,width_mae_pct_of_max,spine_off_curve_median_mm,"
-        "knot_polyline_error_mm,base_s_median,tip_s_median";
+        "knot_polyline_error_mm,base_s_median,tip_s_median,tip_error_median_mm";
     std::ostringstream csv, md;
     csv << "preset,noise_scale,distance_m,seeds,true_blades,fitted,fitted_matched,"
            "fitted_unmatched,fit_failures,"
         << header << '\n';
-    md << "| preset | noise | fitted (matched) / true | v0 / v1 / v2 error (mm) | tip RMS (mm) | "
+    md << "| preset | noise | fitted (matched) / true | v0 / v1 / v2 error (mm, mean) | tip RMS "
+          "(median) (mm) | "
           "height error (mean abs, signed) | width MAE (% of max) | fitted spine off true "
           "curve (median, mm) | visible s (base-tip) |\n|---|---|---|---|---|---|---|---|---|\n";
     for (const std::string& preset : plan.bladeTypes)
@@ -699,11 +701,14 @@ void modelingAccuracy(const Plan& plan, const fs::path& out, Fig12Input& fig12) 
             }
             std::istringstream row(modelingRow(pooled));
             std::vector<std::string> f;
-            for (std::string cell; std::getline(row, cell, ',');) f.push_back(cell);
+            for (std::string cell; std::getline(row, cell, ',');)
+                f.push_back(cell.empty() ? "–" : cell);
+            f.resize(12, "–");
             md << "| " << preset << " | " << noiseName(noise) << " | " << pooledFitted << " ("
                << pooledMatched << ") / " << pooledTrue << " | " << f[0] << " / " << f[1] << " / "
-               << f[2] << " | " << f[3] << " | " << f[4] << " %, " << f[5] << " % | " << f[6]
-               << " % | " << f[7] << " | " << f[9] << "-" << f[10] << " |\n";
+               << f[2] << " | " << f[3] << " (" << f[11] << ") | " << f[4] << " %, " << f[5]
+               << " % | " << f[6] << " % | " << f[7] << " | "
+               << (pooled.empty() ? std::string("–") : f[9] + "-" + f[10]) << " |\n";
             std::cout << "  " << preset << ' ' << noiseName(noise) << ": " << pooledMatched << '/'
                       << pooledTrue << " fitted, v0/v1/v2 " << f[0] << '/' << f[1] << '/' << f[2]
                       << " mm, height " << f[4] << " %, width " << f[6] << " %\n";
@@ -713,6 +718,10 @@ void modelingAccuracy(const Plan& plan, const fs::path& out, Fig12Input& fig12) 
 }
 
 // ---- 4. Modeling trade-off: spine error against capture time per tuft --------------------
+// The charts put thread CPU time on x: on the shared, loaded build machine the wall time of the
+// same work varied up to 2.6x between configurations (both are in the CSV).
+const std::string kCpuTuftLabel =
+    "CPU time per tuft: segmentation + fits (ms, one thread; wall time in the CSV)";
 void modelingTradeoff(const Plan& plan, const std::vector<Scene>& scenes, const fs::path& out) {
     std::cout << "modeling trade-off on " << scenes.size() << " scenes, " << plan.repetitions
               << " repetitions\n";
@@ -737,11 +746,13 @@ void modelingTradeoff(const Plan& plan, const std::vector<Scene>& scenes, const 
         configs.push_back({"width-tolerance-mm", fixed(tol, 1), o});
     }
     std::ostringstream csv, md;
-    csv << "knob,value,time_ms,cpu_ms,spine_error_mm,spine_off_curve_median_mm,"
-           "knot_polyline_error_mm,width_mae_pct_of_max,width_samples_mean,fitted_matched\n";
+    csv << "knob,value,time_ms,cpu_ms,spine_error_mm,spine_error_median_mm,"
+           "spine_off_curve_median_mm,knot_polyline_error_mm,knot_polyline_median_mm,"
+           "width_mae_pct_of_max,width_samples_mean,fitted_matched\n";
     md << "| knob | value | capture time per tuft (ms, wall) | CPU (ms) | spine control-point "
-          "error (mm) | refined-knot polyline off truth (mm) | width MAE (% of max) | width "
-          "samples | blades |\n|---|---|---|---|---|---|---|---|---|\n";
+          "error (mm, median / mean) | refined-knot polyline off truth (mm, median / mean) | "
+          "width MAE (% of max) | width samples | blades "
+          "|\n|---|---|---|---|---|---|---|---|---|\n";
     std::vector<TradeoffRow> rows;
     for (const Config& c : configs) {
         const capture::Segmenter segmenter(c.options.segmenter);
@@ -763,15 +774,17 @@ void modelingTradeoff(const Plan& plan, const std::vector<Scene>& scenes, const 
                     static_cast<float>(s.matchedFits[i]->archetype.width.width_m.size()));
             }
         }
-        rows.push_back({c.knob, mean(wall),
+        rows.push_back({c.knob, mean(cpu),
                         c.knob + ',' + c.value + ',' + fixed(mean(wall), 2) + ',' +
                             fixed(mean(cpu), 2) + ',' + fixed(mean(cp), 3) + ',' +
-                            fixed(median(off), 3) + ',' + fixed(mean(knots), 3) + ',' +
+                            fixed(median(cp), 3) + ',' + fixed(median(off), 3) + ',' +
+                            fixed(mean(knots), 3) + ',' + fixed(median(knots), 3) + ',' +
                             fixed(kPercent * mean(width), 2) + ',' + fixed(mean(samples), 1) + ',' +
                             std::to_string(cp.size()) + '\n'});
         md << "| " << c.knob << " | " << c.value << " | " << fixed(mean(wall), 1) << " | "
-           << fixed(mean(cpu), 1) << " | " << fixed(mean(cp), 2) << " | " << fixed(mean(knots), 2)
-           << " | " << fixed(kPercent * mean(width), 1) << " | " << fixed(mean(samples), 1) << " | "
+           << fixed(mean(cpu), 1) << " | " << fixed(median(cp), 2) << " / " << fixed(mean(cp), 2)
+           << " | " << fixed(median(knots), 2) << " / " << fixed(mean(knots), 2) << " | "
+           << fixed(kPercent * mean(width), 1) << " | " << fixed(mean(samples), 1) << " | "
            << cp.size() << " |\n";
         std::cout << "  " << c.knob << '=' << c.value << ": " << fixed(mean(wall), 1)
                   << " ms wall, " << fixed(mean(cpu), 1) << " ms CPU, spine " << fixed(mean(cp), 2)
@@ -782,17 +795,16 @@ void modelingTradeoff(const Plan& plan, const std::vector<Scene>& scenes, const 
     writeText(out / "modeling_tradeoff.csv", csv.str());
     writeText(out / "modeling_tradeoff.md", md.str());
     chart(out / "modeling_tradeoff.csv", out / "modeling_tradeoff.png",
-          "Capture: fitted spine control-point error vs time per tuft", "time_ms", "spine_error_mm",
-          "knob", "capture time per tuft (ms, wall clock, one thread)",
-          "spine control-point error (mm, mean of v0, v1, v2)");
+          "Capture: fitted spine control-point error vs time per tuft (5 blade-type tufts)",
+          "cpu_ms", "spine_error_median_mm", "knob", kCpuTuftLabel,
+          "spine control-point error (mm, median over blades)");
     chart(out / "modeling_tradeoff.csv", out / "modeling_tradeoff_knots.png",
-          "Capture: refined-knot polyline error vs time per tuft", "time_ms",
-          "knot_polyline_error_mm", "knob", "capture time per tuft (ms, wall clock, one thread)",
-          "refined-knot polyline off the true spine (mm)");
+          "Capture: refined-knot polyline error vs time per tuft", "cpu_ms",
+          "knot_polyline_median_mm", "knob", kCpuTuftLabel,
+          "refined-knot polyline off the true spine (mm, median)");
     chart(out / "modeling_tradeoff.csv", out / "modeling_tradeoff_width.png",
-          "Capture: width-profile error vs time per tuft", "time_ms", "width_mae_pct_of_max",
-          "knob", "capture time per tuft (ms, wall clock, one thread)",
-          "width-profile MAE (% of the blade's max width)");
+          "Capture: width-profile error vs time per tuft", "cpu_ms", "width_mae_pct_of_max", "knob",
+          kCpuTuftLabel, "width-profile MAE (% of the blade's max width)");
 }
 
 // ---- 5. Fan & Sheng 2017 Fig. 12 on the captured skeletons -------------------------------
@@ -883,7 +895,7 @@ void fig12(const Fig12Input& input, const fs::path& out) {
            &modeling::RefinerComparisonRow::hausdorff_mm);
     writeText(out / "fig12.md", md.str());
     chart(out / "fig12_all.csv", out / "fig12.png",
-          "Fan & Sheng Fig. 12 on captured skeletons (" + std::to_string(pooledBlades) +
+          "Fan and Sheng Fig. 12 on captured skeletons (" + std::to_string(pooledBlades) +
               " blades, 128 knots refined)",
           "knots", "refined_hausdorff_mm", "refiner", "knots kept (of 128, log scale)",
           "refined Hausdorff error (mm, mean over frames and blades)", "logx");
