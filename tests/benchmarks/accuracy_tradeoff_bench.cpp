@@ -73,7 +73,7 @@ constexpr double kFrameRate_hz = 30.0;  // as `meadow synth` records
 constexpr int kMaxFusionFrames = 5;
 const std::vector<int> kFusionFrames{1, 2, 3, 5};
 const std::vector<float> kSmoothingSigmas_px{0.f, 1.f, 2.f, 4.f, 8.f};
-const std::vector<int> kRefinedKnots{4, 8, 16, 32, 64};
+const std::vector<int> kRefinedKnots{0, 4, 8, 16, 32, 64};  // 0: refining off (its cost)
 const std::vector<int> kModelingFusionFrames{1, 3, 5};
 const std::vector<float> kWidthTolerances_mm{0.f, 0.5f, 1.f, 2.f};
 const std::vector<int> kFig12Knots{128, 64, 32, 16, 8};  // 128 = the full skeleton, error 0
@@ -142,6 +142,12 @@ std::string fixed(double value, int decimals) {
     std::ostringstream s;
     s << std::fixed << std::setprecision(decimals) << value;
     return s.str();
+}
+
+// A CSV cell: blank when nothing was measured (gnuplot then draws no point).
+template <class T>
+std::string orBlank(const std::vector<T>& values, double value, int decimals) {
+    return values.empty() ? std::string() : fixed(value, decimals);
 }
 
 std::string noiseName(float noise) { return fixed(noise, 0) + "x"; }
@@ -308,8 +314,9 @@ struct BladeError {
     float v0_mm = 0.f, v1_mm = 0.f, v2_mm = 0.f;  // control points, camera space
     float heightError = 0.f;                      // (fitted - true) / true, signed
     float widthMaeFraction = 0.f;                 // mean |w_fit(s) - w_true(s)| / max true width
-    float offCurve_mm = 0.f;      // largest distance of the fitted spine from the true spine curve
-    float knotPolyline_mm = 0.f;  // largest distance of the refined-knot polyline from it
+    float offCurve_mm = 0.f;  // largest distance of the fitted spine from the true spine curve
+    // Largest distance of the refined-knot polyline from it; NaN when refining was off.
+    float knotPolyline_mm = std::numeric_limits<float>::quiet_NaN();
     float baseS = 0.f, tipS = 0.f;  // arc fraction of the true spine nearest the fitted v0 / v2
     [[nodiscard]] float controlPointMean_mm() const { return (v0_mm + v1_mm + v2_mm) / 3.f; }
 };
@@ -627,7 +634,7 @@ std::string modelingRow(const std::vector<BladeError>& e) {
         heightSigned.push_back(b.heightError);
         width.push_back(b.widthMaeFraction);
         off.push_back(b.offCurve_mm);
-        knots.push_back(b.knotPolyline_mm);
+        if (std::isfinite(b.knotPolyline_mm)) knots.push_back(b.knotPolyline_mm);
         base.push_back(b.baseS);
         tip.push_back(b.tipS);
     }
@@ -768,23 +775,26 @@ void modelingTradeoff(const Plan& plan, const std::vector<Scene>& scenes, const 
             for (std::size_t i = 0; i < s.errors.size(); ++i) {
                 cp.push_back(s.errors[i].controlPointMean_mm());
                 off.push_back(s.errors[i].offCurve_mm);
-                knots.push_back(s.errors[i].knotPolyline_mm);
+                if (std::isfinite(s.errors[i].knotPolyline_mm))
+                    knots.push_back(s.errors[i].knotPolyline_mm);
                 width.push_back(s.errors[i].widthMaeFraction);
                 samples.push_back(
                     static_cast<float>(s.matchedFits[i]->archetype.width.width_m.size()));
             }
         }
-        rows.push_back({c.knob, mean(cpu),
-                        c.knob + ',' + c.value + ',' + fixed(mean(wall), 2) + ',' +
-                            fixed(mean(cpu), 2) + ',' + fixed(mean(cp), 3) + ',' +
-                            fixed(median(cp), 3) + ',' + fixed(median(off), 3) + ',' +
-                            fixed(mean(knots), 3) + ',' + fixed(median(knots), 3) + ',' +
-                            fixed(kPercent * mean(width), 2) + ',' + fixed(mean(samples), 1) + ',' +
-                            std::to_string(cp.size()) + '\n'});
+        rows.push_back(
+            {c.knob, mean(cpu),
+             c.knob + ',' + c.value + ',' + fixed(mean(wall), 2) + ',' + fixed(mean(cpu), 2) + ',' +
+                 fixed(mean(cp), 3) + ',' + fixed(median(cp), 3) + ',' + fixed(median(off), 3) +
+                 ',' + orBlank(knots, mean(knots), 3) + ',' + orBlank(knots, median(knots), 3) +
+                 ',' + fixed(kPercent * mean(width), 2) + ',' + fixed(mean(samples), 1) + ',' +
+                 std::to_string(cp.size()) + '\n'});
         md << "| " << c.knob << " | " << c.value << " | " << fixed(mean(wall), 1) << " | "
            << fixed(mean(cpu), 1) << " | " << fixed(median(cp), 2) << " / " << fixed(mean(cp), 2)
-           << " | " << fixed(median(knots), 2) << " / " << fixed(mean(knots), 2) << " | "
-           << fixed(kPercent * mean(width), 1) << " | " << fixed(mean(samples), 1) << " | "
+           << " | "
+           << (knots.empty() ? std::string("– (refining off)")
+                             : fixed(median(knots), 2) + " / " + fixed(mean(knots), 2))
+           << " | " << fixed(kPercent * mean(width), 1) << " | " << fixed(mean(samples), 1) << " | "
            << cp.size() << " |\n";
         std::cout << "  " << c.knob << '=' << c.value << ": " << fixed(mean(wall), 1)
                   << " ms wall, " << fixed(mean(cpu), 1) << " ms CPU, spine " << fixed(mean(cp), 2)
