@@ -46,6 +46,15 @@ void AtomicFile::commit() {
     committed_ = true;
 }
 
+bool isFileOrItsTemporary(std::string_view name, std::string_view fileName) {
+    if (name.substr(0, fileName.size()) != fileName) return false;
+    const std::string_view rest = name.substr(fileName.size());
+    constexpr std::string_view kTmp = ".tmp.";  // AtomicFile's suffix, then the pid
+    if (rest.empty()) return true;
+    if (rest.substr(0, kTmp.size()) != kTmp || rest.size() == kTmp.size()) return false;
+    return rest.substr(kTmp.size()).find_first_not_of("0123456789") == std::string_view::npos;
+}
+
 void writeFileAtomically(const fs::path& path, std::string_view bytes) {
     AtomicFile file(path);
     file.stream().write(bytes.data(), static_cast<std::streamsize>(bytes.size()));

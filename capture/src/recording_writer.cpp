@@ -1,5 +1,4 @@
 #include <cmath>
-#include <regex>
 #include <stdexcept>
 #include <string_view>
 #include <system_error>
@@ -19,12 +18,7 @@ namespace {
 // Names a recording folder may hold: recording.json, depth/, and the temporaries AtomicFile
 // leaves when a process dies between write and rename ("<name>.tmp.<pid>").
 bool isRecordingJsonName(const std::string& name) {
-    static const std::regex pattern(R"(recording\.json(\.tmp\.\d+)?)");
-    return std::regex_match(name, pattern);
-}
-bool isFrameName(const std::string& name) {
-    static const std::regex pattern(R"(\d{6,}\.png(\.tmp\.\d+)?)");
-    return std::regex_match(name, pattern);
+    return isFileOrItsTemporary(name, detail::kRecordingJsonName);
 }
 
 // Empty, or laid out like a recording (finished or not) and nothing else: safe to replace.
@@ -34,7 +28,7 @@ bool isReplaceableRecording(const fs::path& folder, std::string& why) {
         const std::string name = it->path().filename().string();
         if (name == detail::kDepthFolderName && it->is_directory(ec)) {
             for (fs::directory_iterator f(it->path(), ec); !ec && f != end; f.increment(ec))
-                if (!isFrameName(f->path().filename().string())) {
+                if (!isFrameFileName(f->path().filename().string())) {
                     why = f->path().string() + " is not a recording frame";
                     return false;
                 }
@@ -67,6 +61,14 @@ void writeAtomically(const fs::path& file, std::string_view bytes) {
 }
 
 }  // namespace
+
+bool isFrameFileName(std::string_view name) {
+    const std::size_t dot = name.find('.');
+    constexpr std::size_t kMinDigits = 6;  // depth/000000.png
+    if (dot == std::string_view::npos || dot < kMinDigits) return false;
+    if (name.substr(0, dot).find_first_not_of("0123456789") != std::string_view::npos) return false;
+    return isFileOrItsTemporary(name.substr(dot), ".png");
+}
 
 struct RecordingWriter::Impl {
     fs::path folder;

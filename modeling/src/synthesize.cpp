@@ -111,24 +111,6 @@ json intrinsicsJson(const capture::Intrinsics& k) {
             {"fy_px", tidy(k.fy_px)}, {"cx_px", tidy(k.cx_px)},   {"cy_px", tidy(k.cy_px)}};
 }
 
-// "<stem>" or "<stem>.tmp.<pid>" (AtomicFile's temporary, left by a process that died).
-bool isNameOrTemporary(std::string_view name, std::string_view stem) {
-    if (name.substr(0, stem.size()) != stem) return false;
-    const std::string_view rest = name.substr(stem.size());
-    constexpr std::string_view kTmp = ".tmp.";
-    if (rest.empty()) return true;
-    if (rest.substr(0, kTmp.size()) != kTmp || rest.size() == kTmp.size()) return false;
-    return rest.substr(kTmp.size()).find_first_not_of("0123456789") == std::string_view::npos;
-}
-
-// "NNNNNN.png" (six or more digits), or its temporary.
-bool isFrameFileName(std::string_view name) {
-    const std::size_t dot = name.find('.');
-    if (dot == std::string_view::npos || dot < 6) return false;
-    if (name.substr(0, dot).find_first_not_of("0123456789") != std::string_view::npos) return false;
-    return isNameOrTemporary(name.substr(dot), ".png");
-}
-
 // Names the truth folder may hold, so clearing it never deletes anything else.
 bool isTruthFolder(const fs::path& folder) {
     std::error_code ec;
@@ -136,8 +118,8 @@ bool isTruthFolder(const fs::path& folder) {
         const std::string name = it->path().filename().string();
         if (name == kLabelsFolderName && it->is_directory(ec)) {
             for (fs::directory_iterator f(it->path(), ec); !ec && f != end; f.increment(ec))
-                if (!isFrameFileName(f->path().filename().string())) return false;
-        } else if (!isNameOrTemporary(name, kTruthFileName)) {
+                if (!capture::isFrameFileName(f->path().filename().string())) return false;
+        } else if (!isFileOrItsTemporary(name, kTruthFileName)) {
             return false;
         }
     }
@@ -154,7 +136,7 @@ void clearOldTruth(const fs::path& out) {
     for (fs::directory_iterator it(out, ec), end; !ec && it != end; it.increment(ec)) {
         const std::string name = it->path().filename().string();
         if (name != "depth" && name != kTruthFolderName &&
-            !isNameOrTemporary(name, "recording.json"))
+            !isFileOrItsTemporary(name, "recording.json"))
             return;
     }
     if (!fs::is_directory(truth, ec) || !isTruthFolder(truth))

@@ -51,3 +51,12 @@ TEST(AtomicFile, UnwritableFolderIsAClearError) {
     EXPECT_THROW(meadow::writeFileAtomically("/proc/meadow_cannot_write_here/x.json", "x"),
                  meadow::Error);
 }
+
+TEST(AtomicFile, RecognisesAFileAndTheTemporaryItsWriterLeftButNothingElse) {
+    EXPECT_TRUE(meadow::isFileOrItsTemporary("recording.json", "recording.json"));
+    EXPECT_TRUE(meadow::isFileOrItsTemporary("recording.json.tmp.4242", "recording.json"));
+    EXPECT_FALSE(meadow::isFileOrItsTemporary("recording.json.tmp.", "recording.json"));
+    EXPECT_FALSE(meadow::isFileOrItsTemporary("recording.json.tmp.42x", "recording.json"));
+    EXPECT_FALSE(meadow::isFileOrItsTemporary("recording.json.bak", "recording.json"));
+    EXPECT_FALSE(meadow::isFileOrItsTemporary("notes.txt", "recording.json"));
+}

@@ -379,3 +379,14 @@ TEST(RecordingPlainFolder, RealTumFrameReadsAsStatedInItsReadme) {
     raw.convertTo(expected_mm, CV_16U, 0.2);
     EXPECT_TRUE(identical(depth_mm, expected_mm));
 }
+
+TEST(RecordingNames, FrameFileNamesAreSixOrMoreDigitsDotPngOrTheirTemporary) {
+    using meadow::capture::isFrameFileName;
+    EXPECT_TRUE(isFrameFileName("000000.png"));
+    EXPECT_TRUE(isFrameFileName("1234567.png"));
+    EXPECT_TRUE(isFrameFileName("000003.png.tmp.991"));
+    EXPECT_FALSE(isFrameFileName("00001.png"));
+    EXPECT_FALSE(isFrameFileName("00000a.png"));
+    EXPECT_FALSE(isFrameFileName("000001.jpg"));
+    EXPECT_FALSE(isFrameFileName("readme"));
+}

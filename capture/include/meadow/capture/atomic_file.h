@@ -26,6 +26,10 @@ private:
     bool committed_ = false;
 };
 
+// True for "<fileName>" itself and for the temporary "<fileName>.tmp.<pid>" that an AtomicFile
+// leaves behind when its process dies between writing and renaming.
+bool isFileOrItsTemporary(std::string_view name, std::string_view fileName);
+
 // Convenience: the whole file at once, atomically.
 void writeFileAtomically(const std::filesystem::path& path, std::string_view bytes);
 

@@ -63,4 +63,8 @@ RecordingInfo readRecordingInfo(const std::filesystem::path& folder);
 // a non-finite value or a non-positive focal length.
 Intrinsics parseIntrinsics(const std::string& fx_fy_cx_cy);
 
+// True for a frame file name of a recording ("000042.png": six or more digits), or its
+// AtomicFile temporary. Label images of synthetic truth follow the same rule.
+bool isFrameFileName(std::string_view name);
+
 }  // namespace meadow::capture
