@@ -25,6 +25,7 @@ set output "$tmp"
 set datafile separator ","
 set key outside right top
 set grid
+set termoption noenhanced  # series and column names are literal text (no _ subscripts)
 set title "$title"
 set xlabel "$xlabel"
 set ylabel "$ylabel"
