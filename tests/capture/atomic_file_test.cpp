@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "meadow/capture/error.h"
+#include "test_util.h"
 
 namespace fs = std::filesystem;
 
@@ -16,12 +17,7 @@ std::string slurp(const fs::path& p) {
     s << in.rdbuf();
     return s.str();
 }
-fs::path freshDir(const std::string& name) {
-    const fs::path dir = fs::temp_directory_path() / ("meadow_atomic_" + name);
-    fs::remove_all(dir);
-    fs::create_directories(dir);
-    return dir;
-}
+fs::path freshDir(const std::string& name) { return meadow::test::freshTempDir("atomic_" + name); }
 }  // namespace
 
 TEST(AtomicFile, CommitReplacesTheFileWhole) {

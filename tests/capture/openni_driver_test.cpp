@@ -18,6 +18,7 @@
 #include "meadow/capture/depth_source.h"
 #include "meadow/capture/error.h"
 #include "meadow/capture/recording.h"
+#include "test_util.h"
 
 namespace fs = std::filesystem;
 using namespace meadow::capture;
@@ -30,13 +31,7 @@ constexpr const char* kChildVariable = "MEADOW_OPENNI_TEST_CHILD";
 
 bool inChild() { return std::getenv(kChildVariable) != nullptr; }
 
-fs::path freshDir(const std::string& name) {
-    const fs::path dir =
-        fs::temp_directory_path() / ("meadow_openni_" + name + "_" + std::to_string(::getpid()));
-    fs::remove_all(dir);
-    fs::create_directories(dir);
-    return dir;
-}
+fs::path freshDir(const std::string& name) { return meadow::test::freshTempDir("openni_" + name); }
 
 RecordingInfo syntheticInfo(int frames) {
     RecordingInfo info;
@@ -97,28 +92,15 @@ void expectSameRecording(const std::string& expectedUri, const std::string& actu
     EXPECT_GT(frames, 0);
 }
 
-struct ChildResult {
-    int exitCode = -1;
-    std::string output;
-};
-
 // Runs this test program again with `environment` (NAME=value ...) for one child test.
-ChildResult runChild(const std::string& childTest, const std::string& environment) {
+meadow::test::CommandResult runChild(const std::string& childTest, const std::string& environment) {
     std::array<char, 4096> self{};
     const ssize_t n = ::readlink("/proc/self/exe", self.data(), self.size() - 1);
-    ChildResult result;
-    if (n <= 0) return result;
+    if (n <= 0) return {};
     const std::string command = "env " + std::string(kChildVariable) + "=1 " + environment + " '" +
                                 std::string(self.data(), static_cast<std::size_t>(n)) +
-                                "' --gtest_filter=OpenNiDriverChild." + childTest + " 2>&1";
-    FILE* pipe = ::popen(command.c_str(), "r");
-    if (pipe == nullptr) return result;
-    std::array<char, 4096> chunk{};
-    while (std::fgets(chunk.data(), static_cast<int>(chunk.size()), pipe))
-        result.output += chunk.data();
-    const int status = ::pclose(pipe);
-    result.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-    return result;
+                                "' --gtest_filter=OpenNiDriverChild." + childTest;
+    return meadow::test::runCommand(command);
 }
 
 #define SKIP_UNLESS_PRIVATE_FOLDER()                                                       \
@@ -129,7 +111,7 @@ ChildResult runChild(const std::string& childTest, const std::string& environmen
 // Runs OpenNiDriverChild.NAME with meadow's driver loaded and expects it to pass.
 #define EXPECT_CHILD_PASSES(NAME, EXTRA_ENV)                                                    \
     do {                                                                                        \
-        const ChildResult child = runChild(                                                     \
+        const meadow::test::CommandResult child = runChild(                                     \
             NAME, "LD_LIBRARY_PATH=" + (kPrivateFolder / "lib").string() + " " + EXTRA_ENV);    \
         EXPECT_EQ(child.exitCode, 0) << child.output;                                           \
         EXPECT_NE(child.output.find("[  PASSED  ] 1 test"), std::string::npos) << child.output; \
@@ -189,7 +171,7 @@ TEST(OpenNiDriver, MissingDriverFolderIsOneClearError) {
     // A library folder with OpenNI2 but no OpenNI2/Drivers beside it.
     const fs::path dir = freshDir("nodrivers");
     fs::copy_file(kPrivateFolder / "lib/libOpenNI2.so.0", dir / "libOpenNI2.so.0");
-    const ChildResult child =
+    const meadow::test::CommandResult child =
         runChild("MissingDriverFolderIsOneClearError", "LD_LIBRARY_PATH=" + dir.string());
     EXPECT_EQ(child.exitCode, 0) << child.output;
     EXPECT_NE(child.output.find("[  PASSED  ] 1 test"), std::string::npos) << child.output;

@@ -13,6 +13,7 @@
 
 #include "meadow/capture/depth_source.h"
 #include "meadow/capture/error.h"
+#include "test_util.h"
 
 namespace fs = std::filesystem;
 using namespace meadow::capture;
@@ -21,13 +22,7 @@ namespace {
 
 const fs::path kRealOni = fs::path(MEADOW_SHARED_DATA_DIR) / "real/oni-3dj-room/test.oni";
 
-fs::path freshDir(const std::string& name) {
-    const fs::path dir =
-        fs::temp_directory_path() / ("meadow_openni_" + name + "_" + std::to_string(::getpid()));
-    fs::remove_all(dir);
-    fs::create_directories(dir);
-    return dir;
-}
+fs::path freshDir(const std::string& name) { return meadow::test::freshTempDir("openni_" + name); }
 
 void writeBytes(const fs::path& file, const std::vector<char>& bytes) {
     std::ofstream out(file, std::ios::binary);

@@ -14,6 +14,7 @@
 #include "meadow/capture/depth_source.h"
 #include "meadow/capture/error.h"
 #include "meadow/capture/recording.h"
+#include "test_util.h"
 
 namespace fs = std::filesystem;
 using namespace meadow::capture;
@@ -21,11 +22,7 @@ using namespace meadow::capture;
 namespace {
 
 fs::path freshDir(const std::string& name) {
-    const fs::path dir = fs::temp_directory_path() /
-                         ("meadow_recording_errors_" + name + "_" + std::to_string(::getpid()));
-    fs::remove_all(dir);
-    fs::create_directories(dir);
-    return dir;
+    return meadow::test::freshTempDir("recording_errors_" + name);
 }
 
 RecordingInfo smallInfo() {

@@ -17,19 +17,15 @@
 
 #include "meadow/capture/depth_source.h"
 #include "meadow/capture/error.h"
+#include "test_util.h"
 
 namespace fs = std::filesystem;
 using namespace meadow::capture;
 
 namespace {
 
-// A fresh, empty folder of this process, outside the repository.
 fs::path freshDir(const std::string& name) {
-    const fs::path dir =
-        fs::temp_directory_path() / ("meadow_recording_" + name + "_" + std::to_string(::getpid()));
-    fs::remove_all(dir);
-    fs::create_directories(dir);
-    return dir;
+    return meadow::test::freshTempDir("recording_" + name);
 }
 
 RecordingInfo smallInfo() {

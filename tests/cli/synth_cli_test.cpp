@@ -102,8 +102,8 @@ TEST(SynthCli, UnknownPresetFailsWithOneLineNamingTheKnownPresets) {
 
 TEST(SynthCli, OutOfRangeOrMalformedNumbersAreRejectedNamingTheOption) {
     const std::string out = (freshTempDir("synth_bad") / "rec").string();
-    for (const std::string& bad : {"--frames 0", "--frames x", "--distance 3", "--distance -1",
-                                   "--blades 13", "--noise -0.5", "--seed -4"}) {
+    for (const std::string bad : {"--frames 0", "--frames x", "--distance 3", "--distance -1",
+                                  "--blades 13", "--noise -0.5", "--seed -4"}) {
         const auto r = runMeadow("synth --preset slim-grass --out " + out + " " + bad);
         EXPECT_NE(r.exitCode, 0) << bad;
         const std::string option = bad.substr(0, bad.find(' '));

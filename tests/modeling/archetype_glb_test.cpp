@@ -10,6 +10,7 @@
 #include <nlohmann/json.hpp>
 
 #include "meadow/modeling/error.h"
+#include "test_util.h"
 
 namespace fs = std::filesystem;
 using namespace meadow::modeling;
@@ -29,21 +30,6 @@ ArchetypeLibrary twoBladeLibrary() {
     grass.nearestShape = AnalyticShape::Triangle;
     lib.archetypes = {leaf, grass};
     return lib;
-}
-
-struct CommandResult {
-    int exitCode;
-    std::string output;
-};
-
-CommandResult run(const std::string& command) {
-    std::array<char, 4096> chunk{};
-    std::string out;
-    FILE* pipe = ::popen((command + " 2>&1").c_str(), "r");
-    if (!pipe) return {-1, "popen failed"};
-    while (std::fgets(chunk.data(), chunk.size(), pipe)) out += chunk.data();
-    const int status = ::pclose(pipe);
-    return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, out};
 }
 
 }  // namespace
@@ -77,11 +63,11 @@ TEST(ArchetypeGlb, KhronosValidatorReportsNoErrors) {
     ASSERT_TRUE(fs::exists(module))
         << "the Khronos glTF validator is not installed: run ./meadow.sh test "
            "(or `npm install` in tools/)";
-    const fs::path dir = fs::temp_directory_path() / "meadow_glb_test";
-    fs::create_directories(dir);
+    const fs::path dir = meadow::test::freshTempDir("glb_test");
     const fs::path glb = dir / "library.glb";
     exportArchetypeGlb(twoBladeLibrary(), glb);
-    const CommandResult r = run("node " + validator.string() + " " + glb.string());
+    const meadow::test::CommandResult r =
+        meadow::test::runCommand("node " + validator.string() + " " + glb.string());
     ASSERT_EQ(r.exitCode, 0) << r.output;
     const auto report = nlohmann::json::parse(r.output);
     EXPECT_EQ(report["errors"], 0) << r.output;
