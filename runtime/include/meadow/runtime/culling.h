@@ -9,11 +9,11 @@ struct CullSettings {
     bool distance = true;     // Eq. (15): distance levels by index within the patch
     bool occlusion = true;    // against the opaque depth pre-pass (skipped without one)
 
-    float orientationThreshold = 0.9f;  // |dir_c . dir_b| above this culls (the paper's 0.9)
-    float frustumTolerance = 0.1f;      // NDC units the frustum is widened by for blades
-    float maxDistance_m = 60.f;         // d_max of Eq. (15): nothing is drawn beyond it
-    unsigned distanceLevels = 4;        // n of Eq. (15)
-    float occlusionBias_m = 0.05f;      // a point must be this far behind the opaque depth
+    float orientationThreshold = 0.97f;  // |dir_c . dir_b| above this culls (the paper: 0.9)
+    float frustumTolerance = 0.1f;       // NDC units the frustum is widened by for blades
+    float maxDistance_m = 100.f;         // d_max of Eq. (15): nothing is drawn beyond it
+    unsigned distanceLevels = 4;         // n of Eq. (15)
+    float occlusionBias_m = 0.05f;       // a point must be this far behind the opaque depth
 };
 
 class GlContext;
