@@ -14,6 +14,7 @@
 #include <iostream>
 #include <map>
 #include <opencv2/core.hpp>
+#include <opencv2/imgcodecs.hpp>
 
 #include "meadow/capture/segmenter.h"
 #include "meadow/capture/simulated_sensor.h"
@@ -86,6 +87,37 @@ Score score(const cv::Mat1w& labels, const Segmentation& s) {
         if (p.iou >= kMatchIou) ++sc.matched;
     }
     sc.iou = best;
+    if (std::getenv("MEADOW_SEGMENTATION_VERBOSE")) {
+        // Where the IoU is lost, summed over blades: pixels of the cluster mask that no blade
+        // owns in truth (mask too wide), true pixels outside the mask (mask too narrow), and
+        // true pixels given to another blade (partition error).
+        cv::Mat1b found = cv::Mat1b::zeros(labels.size());
+        for (const auto& b : s.blades) found |= b.mask;
+        const cv::Mat1b truthAny = labels > 0;
+        const int extra = cv::countNonZero(found & ~truthAny);
+        const int missed = cv::countNonZero(truthAny & ~found);
+        int misassigned = 0;
+        for (size_t t = 0; t < ids.size(); ++t) {
+            const cv::Mat1b truth = labels == ids[t];
+            for (const auto& p : pairs)
+                if (p.t == t && best[t] == p.iou) {
+                    misassigned += cv::countNonZero(truth & found & ~s.blades[p.f].mask);
+                    break;
+                }
+        }
+        if (const char* folder = std::getenv("MEADOW_SEGMENTATION_DEBUG")) {
+            // Missed true pixels red, extra mask pixels blue, correct ones grey.
+            cv::Mat3b diff(labels.size(), cv::Vec3b(0, 0, 0));
+            diff.setTo(cv::Vec3b(128, 128, 128), truthAny & found);
+            diff.setTo(cv::Vec3b(0, 0, 255), truthAny & ~found);
+            diff.setTo(cv::Vec3b(255, 0, 0), found & ~truthAny);
+            static int counter = 0;
+            cv::imwrite(std::string(folder) + "/diff_" + std::to_string(counter++) + ".png", diff);
+        }
+        std::cout << "    pixels: truth " << cv::countNonZero(truthAny) << ", found "
+                  << cv::countNonZero(found) << ", extra " << extra << ", missed " << missed
+                  << ", misassigned " << misassigned << '\n';
+    }
     for (const auto& b : s.blades)
         for (const auto& r : b.reasons) sc.flags.push_back(r);
     for (const auto& c : s.clusters)
@@ -94,7 +126,7 @@ Score score(const cv::Mat1w& labels, const Segmentation& s) {
 }
 
 Score run(const std::string& presetName, float noiseScale, std::uint64_t seed,
-          const capture::SegmenterParams& params = {}) {
+          const capture::SegmenterParams& params = {}, int fusedFrames = 1) {
     const auto* preset = modeling::findSynthPreset(presetName);
     if (!preset) throw std::invalid_argument("no preset " + presetName);
     modeling::TuftParams tp;
@@ -105,20 +137,34 @@ Score run(const std::string& presetName, float noiseScale, std::uint64_t seed,
     noise.scale = noiseScale * preset->noiseMultiplier;
     const capture::SimulatedSensor sensor(spec.camera.intrinsics, noise);
     const auto sim = sensor.render(tuft.meshes(), seed);
-    capture::DepthFrame frame;
-    frame.depth_mm = sim.depth_mm;
-    frame.intrinsics = spec.camera.intrinsics;
+    // A still tuft seen over several frames: the same meshes, independent sensor noise.
+    std::vector<capture::DepthFrame> frames(static_cast<size_t>(fusedFrames));
+    for (int k = 0; k < fusedFrames; ++k) {
+        auto& f = frames[static_cast<size_t>(k)];
+        f.index = k;
+        f.depth_mm =
+            k == 0 ? sim.depth_mm
+                   : sensor.render(tuft.meshes(), seed * 1000 + static_cast<unsigned>(k)).depth_mm;
+        f.intrinsics = spec.camera.intrinsics;
+    }
+    const capture::DepthFrame& frame = frames.front();
     capture::SegmenterParams used = params;
     if (const char* ref = std::getenv("MEADOW_SEGMENTATION_REFERENCE");
         ref && std::string(ref) == "centre")
         used.reference = capture::ReferencePoint::ContourCentre;  // for the README's comparison
-    const Segmentation s = capture::Segmenter(used).segment(frame);
+    const Segmentation s = capture::Segmenter(used).segment(frames);
     if (const char* folder = std::getenv("MEADOW_SEGMENTATION_DEBUG"))
         capture::writeDebugOverlay(
             std::filesystem::path(folder) / (presetName + "_n" + std::to_string(noiseScale) + "_s" +
                                              std::to_string(seed) + ".png"),
             frame, s);
     if (std::getenv("MEADOW_SEGMENTATION_VERBOSE")) std::cout << presetName << ' ' << s.summary();
+    if (std::getenv("MEADOW_SEGMENTATION_VERBOSE")) {
+        const cv::Mat1b truthAny = sim.labels > 0;
+        const cv::Mat1b noReading = sim.depth_mm == 0;
+        std::cout << "    true pixels without a reading: " << cv::countNonZero(truthAny & noReading)
+                  << " of " << cv::countNonZero(truthAny) << '\n';
+    }
     return score(sim.labels, s);
 }
 
@@ -150,6 +196,19 @@ TEST(SegmentationAccuracy, LeafPresetsAtNominalNoiseKeepTodaysAccuracy) {
         EXPECT_GE(total.medianIou(), kFloorMedianIou) << preset;
         std::cout << "  " << preset << ": recall " << total.recall() << " precision "
                   << total.precision() << " median IoU " << total.medianIou() << '\n';
+    }
+}
+
+// A plane fitted to the narrow strip of ground the sensor still reads is loose in pitch and
+// roll; on these two (found in the README's measurement run) it left a strip of near ground
+// 10-25 mm off the plane, nearer than the tuft, and the automatic band took that strip for the
+// tuft (recall 0). The band now skips a depth mode whose points form a flat, level patch.
+TEST(SegmentationAccuracy, GroundLeftByThePlaneFitIsNotTakenForTheTuft) {
+    for (const auto& [preset, seed] :
+         std::vector<std::pair<std::string, int>>{{"bamboo-leaf", 1}, {"sharp-tip", 2}}) {
+        const Score sc = run(preset, 1.0f, static_cast<std::uint64_t>(seed), {}, 3);
+        EXPECT_GE(sc.recall(), 0.8) << preset << " seed " << seed;
+        EXPECT_GE(sc.precision(), 0.8) << preset << " seed " << seed;
     }
 }
 

@@ -20,6 +20,44 @@ constexpr float kMaxHistogramDepth_m = 12.0f;
 constexpr float kSceneryColumnCoverage = 0.6f;
 // Valleys above this share of the mode's peak are crossed (between blades of one tuft).
 constexpr double kBandFloorFraction = 0.25;
+// Points sampled per mode for the flatness test: a 3x3 covariance needs no more.
+constexpr int kFlatnessSamples = 2000;
+
+struct Flatness {
+    float tilt_deg = 90.f;    // angle between the points' thinnest direction and vertical
+    float thickness_m = 0.f;  // standard deviation along that direction
+};
+
+// Principal axes of the masked points within [lo_mm, hi_mm). Ground that a plane fit left (a
+// fit to the narrow strip of ground a low sensor still reads is poorly constrained in pitch and
+// roll; a few degrees leave a strip of near ground 10-25 mm off the plane) is a flat, level
+// patch: its thinnest axis is vertical. A tuft seen from the side spreads up and across, so its
+// thinnest axis faces the camera.
+Flatness flatness(const cv::Mat1w& depth_mm, const cv::Mat1b& mask, const Intrinsics& K,
+                  float lo_mm, float hi_mm, double inRange) {
+    const int step = std::max(1, static_cast<int>(inRange / kFlatnessSamples));
+    std::vector<cv::Vec3f> points;
+    int seen = 0;
+    for (int y = 0; y < depth_mm.rows; ++y) {
+        const auto* d = depth_mm[y];
+        const auto* m = mask[y];
+        for (int x = 0; x < depth_mm.cols; ++x) {
+            if (!m[x] || d[x] == 0 || static_cast<float>(d[x]) < lo_mm ||
+                static_cast<float>(d[x]) >= hi_mm || seen++ % step != 0)
+                continue;
+            const auto p = K.backProject(static_cast<float>(x), static_cast<float>(y),
+                                         static_cast<float>(d[x]) / kMillimetresPerMetre);
+            points.emplace_back(p.x, p.y, p.z);
+        }
+    }
+    Flatness f;
+    if (points.size() < 3) return f;
+    const cv::PCA pca(cv::Mat(points).reshape(1), cv::noArray(), cv::PCA::DATA_AS_ROW);
+    const float normalY = std::abs(pca.eigenvectors.at<float>(2, 1));
+    f.tilt_deg = std::acos(std::min(1.f, normalY)) * 180.f / static_cast<float>(CV_PI);
+    f.thickness_m = std::sqrt(std::max(0.f, pca.eigenvalues.at<float>(2)));
+    return f;
+}
 
 // Share of image columns holding a masked pixel within [lo_mm, hi_mm).
 float columnCoverage(const cv::Mat1w& depth_mm, const cv::Mat1b& mask, float lo_mm, float hi_mm) {
@@ -45,7 +83,8 @@ std::string metres(float v) {
 }  // namespace
 
 DepthBand automaticDepthBand(const cv::Mat1w& depth_mm, const cv::Mat1b& mask,
-                             const SegmenterParams& params, StageReport& report) {
+                             const Intrinsics& intrinsics, const SegmenterParams& params,
+                             StageReport& report) {
     const float bin_mm = params.histogramBin_m * kMillimetresPerMetre;
     const int bins = static_cast<int>(kMaxHistogramDepth_m * kMillimetresPerMetre / bin_mm) + 1;
     std::vector<double> hist(static_cast<size_t>(bins), 0.0);
@@ -108,6 +147,19 @@ DepthBand automaticDepthBand(const cv::Mat1w& depth_mm, const cv::Mat1b& mask,
                 metres((static_cast<float>(peak) + 0.5f) * params.histogramBin_m) + ": it spans " +
                 std::to_string(static_cast<int>(100 * coverage)) +
                 " % of the image columns (ground or wall, not a tuft)");
+            peak = hi;
+            continue;
+        }
+        const Flatness flat = flatness(depth_mm, mask, intrinsics, static_cast<float>(lo) * bin_mm,
+                                       static_cast<float>(hi + 1) * bin_mm, mass);
+        if (flat.tilt_deg <= params.maxGroundTilt_deg &&
+            flat.thickness_m <= params.planeDistance_m) {
+            std::ostringstream s;
+            s.precision(3);
+            s << "skipped the mode at " << (static_cast<float>(peak) + 0.5f) * params.histogramBin_m
+              << " m: a flat, level patch (" << flat.thickness_m * kMillimetresPerMetre
+              << " mm thick, tilted " << flat.tilt_deg << " deg): ground, not a tuft";
+            report.notes.push_back(s.str());
             peak = hi;
             continue;
         }

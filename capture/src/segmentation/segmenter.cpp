@@ -200,7 +200,7 @@ struct Segmenter::Impl {
             });
         if (!userBand) {
             stage(out, "depth band", &mask, [&](StageReport& r) {
-                band = seg::automaticDepthBand(depth_mm, mask, params, r);
+                band = seg::automaticDepthBand(depth_mm, mask, intrinsics, params, r);
                 if (band.found) {
                     cv::Mat1b inBand = seg::depthBandMask(depth_mm, band, r);
                     inBand &= mask;

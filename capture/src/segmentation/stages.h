@@ -26,8 +26,11 @@ struct DepthBand {
 // The nearest histogram mode with enough mass, widened to its valleys (Fan & Sheng 2017,
 // Sec. 4.1 use a user-set depth band; this finds one when the user gives none).
 // Only pixels set in `mask` count (ground removed first, so the ground's own mode cannot win).
+// A mode whose points form a flat, level patch (ground the plane fit left, or all the ground
+// when no plane is fitted) is skipped: a tuft stands up from the ground.
 DepthBand automaticDepthBand(const cv::Mat1w& depth_mm, const cv::Mat1b& mask,
-                             const SegmenterParams& params, StageReport& report);
+                             const Intrinsics& intrinsics, const SegmenterParams& params,
+                             StageReport& report);
 cv::Mat1b depthBandMask(const cv::Mat1w& depth_mm, DepthBand band, StageReport& report);
 // Grows `band` into pixels of `allowed` that are depth-continuous (step <= step_m between
 // 8-neighbours) with it and within maxBandHalfWidth_m of the band.
