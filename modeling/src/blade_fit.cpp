@@ -77,13 +77,17 @@ BladeFit fitArchetype(const Skeleton& skeleton, const BladeFitParams& params, co
     r.sideLengthRatio = skeleton.sideLengthRatio;
     r.asymmetric = skeleton.asymmetric;
     r.skeletonPoints = static_cast<int>(points.size());
+    r.baseExtension_mm = skeleton.baseExtension_m * kMillimetresPerMetre;
+    r.baseNotRooted = skeleton.baseNotRooted;
     if (!mask.empty() && intrinsics != nullptr && skeleton.width_px.size() == points.size()) {
         const std::vector<float> dt_px = distanceTransformWidth_px(mask, skeleton.midline_px);
         double sum = 0.0;
         int used = 0;
         for (std::size_t j = 0; j < points.size(); ++j) {
             const float f = static_cast<float>(j) / static_cast<float>(points.size() - 1);
-            if (f < kWidthCheckMargin || f > 1.f - kWidthCheckMargin || skeleton.width_px[j] <= 0.f)
+            // Points on a rooting piece (blade_root.h) have no contour behind them.
+            if (f < kWidthCheckMargin || f > 1.f - kWidthCheckMargin ||
+                static_cast<int>(j) < skeleton.rootPoints || skeleton.width_px[j] <= 0.f)
                 continue;
             const float metresPerPixel = skeleton.width_m[j] / skeleton.width_px[j];
             sum += std::abs(dt_px[j] - skeleton.width_px[j]) * metresPerPixel;

@@ -69,7 +69,8 @@ CaptureResult captureArchetypes(capture::DepthSource& source, const std::string&
         // The fit reads depth from one frame: the group's median when fused would be better,
         // but the first frame keeps each archetype traceable to a recorded frame.
         const capture::DepthFrame& depthFrame = group.front();
-        for (const capture::BladeContour& blade : seg.blades) {
+        for (std::size_t index = 0; index < seg.blades.size(); ++index) {
+            const capture::BladeContour& blade = seg.blades[index];
             ++summary.bladesFound;
             const std::string where =
                 "frame " + std::to_string(frameIndex) + " blade " + std::to_string(blade.id);
@@ -79,8 +80,13 @@ CaptureResult captureArchetypes(capture::DepthSource& source, const std::string&
                 continue;
             }
             try {
-                BladeFit fit =
-                    fitBlade(blade, depthFrame, options.fit, {sourceName, frameIndex, blade.id});
+                // Rooted at the tuft's base (options.fit.root); a refusal is noted, not fatal.
+                BladeFit fit = fitSegmentedBlade(seg, index, depthFrame, options.fit,
+                                                 {sourceName, frameIndex, blade.id});
+                if (fit.skeleton.baseNotRooted)
+                    for (const std::string& reason : fit.skeleton.reasons)
+                        if (reason.starts_with("not rooted"))
+                            summary.notes.push_back(where + " modelled unrooted: " + reason);
                 fit.archetype.name =
                     "f" + std::to_string(frameIndex) + "-b" + std::to_string(blade.id);
                 result.library.archetypes.push_back(std::move(fit.archetype));

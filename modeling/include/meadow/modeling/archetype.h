@@ -37,6 +37,11 @@ struct FitReport {
     float sideLengthRatio = 1.f;   // longer contour side / shorter side (1 = symmetric)
     bool asymmetric = false;       // the symmetric match is not trustworthy for this blade
     int skeletonPoints = 0;        // matched contour pairs behind the fit
+    // Rooting at the tuft's base (blade_root.h): length of the straight piece from the segmented
+    // base down to the cluster's base point (0: not rooted); baseNotRooted: rooting was asked
+    // for and refused (the base is too far from the blade, or has no depth). Not in the JSON.
+    float baseExtension_mm = 0.f;
+    bool baseNotRooted = false;
 };
 
 // Where an archetype came from, so a library entry can be traced back to its capture.

@@ -11,6 +11,7 @@
 #include "meadow/capture/blade_contour.h"
 #include "meadow/capture/depth_frame.h"
 #include "meadow/modeling/archetype.h"
+#include "meadow/modeling/blade_root.h"
 #include "meadow/modeling/chain_simulation.h"
 #include "meadow/modeling/skeleton.h"
 #include "meadow/modeling/skeleton_refiner.h"
@@ -84,6 +85,7 @@ struct BladeFitParams {
     int refinedKnots = 16;
     RefinerParams refiner;
     ChainSimulationParams simulation;  // up and gravity are overridden to the blade-local +Y
+    RootParams root;                   // rooting at the tuft's base (fitSegmentedBlade only)
 };
 
 struct BladeFit {
@@ -101,5 +103,12 @@ BladeFit fitArchetype(const Skeleton& skeleton, const BladeFitParams& params = {
 // blade cannot be fitted (no depth, degenerate skeleton).
 BladeFit fitBlade(const capture::BladeContour& blade, const capture::DepthFrame& frame,
                   const BladeFitParams& params = {}, const Source& source = {});
+// The blade segmentation.blades[bladeIndex] as capture fits it: extractSkeleton, then, when
+// params.root.enabled, rootSkeleton at its cluster's base (blade_root.h; a blade whose base cannot
+// be found or is refused is fitted unrooted, with FitReport::baseNotRooted set), then
+// fitArchetype. Throws ModelingError as fitBlade does.
+BladeFit fitSegmentedBlade(const capture::Segmentation& segmentation, std::size_t bladeIndex,
+                           const capture::DepthFrame& frame, const BladeFitParams& params = {},
+                           const Source& source = {});
 
 }  // namespace meadow::modeling

@@ -48,6 +48,12 @@ struct Skeleton {
     float sideLengthRatio = 1.f;      // longer / shorter contour side
     float ridgeOffsetFraction = 0.f;  // see SkeletonParams::maxRidgeOffsetFraction
     bool asymmetric = false;
+    // Rooting at the tuft's base (blade_root.h): the straight piece added below the segmented
+    // base (0: not rooted), how many leading points lie on it (no contour behind them), and
+    // whether rooting was asked for but refused (the reason is in `reasons`).
+    float baseExtension_m = 0.f;
+    int rootPoints = 0;
+    bool baseNotRooted = false;
     std::vector<std::string> reasons;  // one line per raised concern
 };
 

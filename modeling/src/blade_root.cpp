@@ -1,0 +1,197 @@
+// Rooting a segmented blade at its tuft's base (blade_root.h), and the fit that uses it.
+#include "meadow/modeling/blade_root.h"
+
+#include <algorithm>
+#include <cmath>
+#include <glm/geometric.hpp>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "meadow/modeling/blade_fit.h"
+#include "meadow/modeling/error.h"
+
+namespace meadow::modeling {
+namespace {
+
+// Fraction of the chain, from its base end, whose direction is the blade's base direction for
+// the "base above the blade" test.
+constexpr float kBasePartFraction = 0.08f;
+// The segmented contour starts at the fork, where its two sides follow the crotch between
+// neighbouring blades: the matched widths over the lowest part of the chain overstate the blade's
+// width (measured up to 3x). The widths of the part just above it (kWidthReferenceFrom to
+// kWidthReferenceTo of the chain, median) bound those of the lowest part (below
+// kWidthReferenceFrom), and the added piece carries that median. Every blade-type preset's true
+// width at its base is at most its width there.
+constexpr float kWidthReferenceFrom = 0.15f;
+constexpr float kWidthReferenceTo = 0.35f;
+constexpr float kMillimetresPerMetre = 1000.f;
+
+float medianOf(std::vector<float> v) {
+    const auto mid = v.begin() + static_cast<std::ptrdiff_t>(v.size() / 2);
+    std::nth_element(v.begin(), mid, v.end());
+    return *mid;
+}
+
+// Position (segment index, fraction) of n points evenly spaced by arc length along a polyline.
+std::vector<std::pair<std::size_t, float>> arcLengthStations(const std::vector<glm::vec3>& p,
+                                                             int n) {
+    std::vector<float> cumulative(p.size(), 0.f);
+    for (std::size_t i = 1; i < p.size(); ++i)
+        cumulative[i] = cumulative[i - 1] + glm::distance(p[i - 1], p[i]);
+    std::vector<std::pair<std::size_t, float>> out;
+    std::size_t seg = 0;
+    for (int k = 0; k < n; ++k) {
+        const float target = cumulative.back() * static_cast<float>(k) / static_cast<float>(n - 1);
+        while (seg + 2 < p.size() && cumulative[seg + 1] < target) ++seg;
+        const float len = cumulative[seg + 1] - cumulative[seg];
+        out.emplace_back(seg,
+                         len > 0.f ? std::clamp((target - cumulative[seg]) / len, 0.f, 1.f) : 0.f);
+    }
+    return out;
+}
+
+template <class T>
+std::vector<T> sampleAt(const std::vector<T>& v,
+                        const std::vector<std::pair<std::size_t, float>>& stations) {
+    std::vector<T> out;
+    out.reserve(stations.size());
+    for (const auto& [i, f] : stations) out.push_back(v[i] + f * (v[i + 1] - v[i]));
+    return out;
+}
+
+}  // namespace
+
+std::optional<ClusterBase> clusterBase(const capture::Segmentation& segmentation, int bladeId,
+                                       const capture::DepthFrame& frame, const RootParams& params) {
+    const auto cluster = std::find_if(
+        segmentation.clusters.begin(), segmentation.clusters.end(), [&](const auto& c) {
+            return std::find(c.bladeIds.begin(), c.bladeIds.end(), bladeId) != c.bladeIds.end();
+        });
+    if (cluster == segmentation.clusters.end() || frame.depth_mm.empty()) return std::nullopt;
+    const cv::Mat1b& mask = segmentation.clusterMask;
+    const bool useMask = !mask.empty() && mask.size() == frame.depth_mm.size();
+    ClusterBase base;
+    base.base_px = {cluster->basePoint_px.x, cluster->basePoint_px.y};
+    const int u0 = static_cast<int>(std::lround(base.base_px.x)),
+              v0 = static_cast<int>(std::lround(base.base_px.y));
+    std::vector<float> readings_m;
+    for (int r = std::max(0, params.depthWindowRadius_px); r <= params.maxDepthWindowRadius_px;
+         ++r) {
+        readings_m.clear();
+        for (int v = std::max(0, v0 - r); v <= std::min(frame.depth_mm.rows - 1, v0 + r); ++v)
+            for (int u = std::max(0, u0 - r); u <= std::min(frame.depth_mm.cols - 1, u0 + r); ++u)
+                if ((!useMask || mask(v, u) != 0) && frame.depth_mm(v, u) > 0)
+                    readings_m.push_back(static_cast<float>(frame.depth_mm(v, u)) /
+                                         kMillimetresPerMetre);
+        if (static_cast<int>(readings_m.size()) >= params.minDepthReadings) break;
+    }
+    if (readings_m.empty()) return std::nullopt;
+    base.depthReadings = static_cast<int>(readings_m.size());
+    base.depth_m = medianOf(std::move(readings_m));
+    base.base_m = frame.intrinsics.backProject(base.base_px.x, base.base_px.y, base.depth_m);
+    return base;
+}
+
+void rootSkeleton(Skeleton& s, const ClusterBase& base, const RootParams& params) {
+    const int n = static_cast<int>(s.points_m.size());
+    if (n < 3 || s.midline_px.size() != s.points_m.size() || s.width_m.size() != s.points_m.size())
+        throw std::invalid_argument("rootSkeleton: need a lifted skeleton with >= 3 points");
+    float length_m = 0.f;
+    for (int i = 1; i < n; ++i) length_m += glm::distance(s.points_m[i - 1], s.points_m[i]);
+    const glm::vec3 lower = s.points_m.front();
+    const float extension_m = glm::distance(base.base_m, lower);
+    const int k = std::clamp(
+        static_cast<int>(std::lround(kBasePartFraction * static_cast<float>(n - 1))), 1, n - 1);
+    const glm::vec3 bladeDirection = s.points_m[static_cast<std::size_t>(k)] - lower;
+    const auto refuse = [&](const std::string& why) {
+        s.baseNotRooted = true;
+        s.reasons.push_back("not rooted at the tuft's base: " + why);
+    };
+    if (extension_m > params.maxExtensionFraction * length_m) {
+        refuse("it lies " + std::to_string(extension_m * kMillimetresPerMetre) +
+               " mm from the blade's lower end, more than " +
+               std::to_string(params.maxExtensionFraction) + " x the blade's visible length (" +
+               std::to_string(length_m * kMillimetresPerMetre) + " mm)");
+        return;
+    }
+    if (glm::dot(lower - base.base_m, bladeDirection) < 0.f) {
+        refuse("it lies above the blade's lower end along the blade (" +
+               std::to_string(extension_m * kMillimetresPerMetre) + " mm away)");
+        return;
+    }
+    s.baseExtension_m = extension_m;
+    if (extension_m <= 0.f) return;
+
+    // Widths of the fork's flare bounded, and carried down the added piece (kWidthReferenceFrom).
+    const auto index = [n](float f) {
+        return std::clamp(static_cast<int>(std::lround(f * static_cast<float>(n - 1))), 0, n - 1);
+    };
+    const int from = index(kWidthReferenceFrom), to = std::max(from, index(kWidthReferenceTo));
+    const auto bound = [&](std::vector<float>& w) {
+        if (w.size() != s.points_m.size()) return 0.f;
+        const float reference = medianOf(std::vector<float>(w.begin() + from, w.begin() + to + 1));
+        for (int i = 0; i < from; ++i) w[i] = std::min(w[i], reference);
+        return reference;
+    };
+    const float referencePx = bound(s.width_px), referenceM = bound(s.width_m);
+    const auto prepend = [](auto& v, auto value) { v.insert(v.begin(), value); };
+    std::vector<glm::vec3> points = s.points_m;
+    prepend(points, base.base_m);
+    const auto stations = arcLengthStations(points, n);
+    std::vector<glm::vec2> midline = s.midline_px, across = s.across_px;
+    std::vector<float> width_px = s.width_px, width_m = s.width_m, depth = s.depth_m;
+    prepend(midline, base.base_px);
+    prepend(across, across.empty() ? glm::vec2(1.f, 0.f) : across.front());
+    prepend(width_px, referencePx);
+    prepend(width_m, referenceM);
+    prepend(depth, base.base_m.z);
+    // Points before the first station on the original chain lie on the added piece.
+    s.rootPoints = static_cast<int>(std::count_if(stations.begin(), stations.end(),
+                                                  [](const auto& st) { return st.first == 0; }));
+    s.points_m = sampleAt(points, stations);
+    s.points_m.front() = base.base_m;
+    s.midline_px = sampleAt(midline, stations);
+    if (across.size() == points.size()) {
+        s.across_px = sampleAt(across, stations);
+        for (glm::vec2& a : s.across_px)
+            if (glm::length(a) > 0.f) a = glm::normalize(a);
+    }
+    if (width_px.size() == points.size()) s.width_px = sampleAt(width_px, stations);
+    s.width_m = sampleAt(width_m, stations);
+    if (depth.size() == points.size()) s.depth_m = sampleAt(depth, stations);
+    s.width_px.back() = 0.f;
+    s.width_m.back() = 0.f;
+    s.arcFraction.assign(static_cast<std::size_t>(n), 0.f);
+    for (int i = 1; i < n; ++i)
+        s.arcFraction[i] = s.arcFraction[i - 1] + glm::distance(s.points_m[i - 1], s.points_m[i]);
+    const float total = s.arcFraction.back();
+    for (float& f : s.arcFraction) f = total > 0.f ? f / total : 0.f;
+}
+
+BladeFit fitSegmentedBlade(const capture::Segmentation& segmentation, std::size_t bladeIndex,
+                           const capture::DepthFrame& frame, const BladeFitParams& params,
+                           const Source& source) {
+    if (bladeIndex >= segmentation.blades.size())
+        throw std::invalid_argument("fitSegmentedBlade: blade index " + std::to_string(bladeIndex) +
+                                    " of " + std::to_string(segmentation.blades.size()));
+    const capture::BladeContour& blade = segmentation.blades[bladeIndex];
+    Source src = source;
+    if (src.frame < 0) src.frame = frame.index;
+    if (src.bladeId == 0) src.bladeId = blade.id;
+    Skeleton skeleton = extractSkeleton(blade, frame, params.skeleton);
+    if (params.root.enabled) {
+        if (const auto base = clusterBase(segmentation, blade.id, frame, params.root)) {
+            rootSkeleton(skeleton, *base, params.root);
+        } else {
+            skeleton.baseNotRooted = true;
+            skeleton.reasons.push_back(
+                "not rooted at the tuft's base: no cluster lists the blade, or no valid depth "
+                "within " +
+                std::to_string(params.root.maxDepthWindowRadius_px) + " px of its base point");
+        }
+    }
+    return fitArchetype(skeleton, params, src, blade.mask, &frame.intrinsics);
+}
+
+}  // namespace meadow::modeling

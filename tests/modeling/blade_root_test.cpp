@@ -1,0 +1,90 @@
+// Rooting a segmented blade at its tuft's base (blade_root.h), on a synthetic blade whose lowest
+// part is cut off, as the segmenter cuts a tuft's blades at their fork.
+#include "meadow/modeling/blade_root.h"
+
+#include <gtest/gtest.h>
+
+#include <glm/geometric.hpp>
+
+#include "meadow/modeling/blade_fit.h"
+#include "modeling/blade_fit_synthetic_test.h"
+
+namespace meadow::modeling {
+namespace {
+
+using test::fineIntrinsics;
+using test::makeBlade;
+using test::renderBlade;
+
+// A straight blade 0.12 m tall; the rendered (visible) part starts 30 mm above the true root.
+constexpr float kHidden_m = 0.03f;
+
+struct Cut {
+    test::SyntheticBlade visible;
+    glm::vec3 root_m;
+    Skeleton skeleton;
+};
+
+Cut cutBlade() {
+    const glm::vec3 root{0.f, 0.08f, 0.5f};
+    Cut c{makeBlade(root + glm::vec3(0.f, -kHidden_m, 0.f), 0.12f - kHidden_m, 0.f, 0.006f),
+          root,
+          {}};
+    const auto view = renderBlade(c.visible, fineIntrinsics(), 0.9f);
+    c.skeleton = extractSkeleton(view.blade, view.frame);
+    return c;
+}
+
+ClusterBase baseAt(const glm::vec3& p_m) {
+    ClusterBase b;
+    b.base_m = p_m;
+    b.base_px = fineIntrinsics().project(p_m);
+    b.depth_m = p_m.z;
+    b.depthReadings = 9;
+    return b;
+}
+
+TEST(BladeRoot, ExtendsTheSkeletonStraightDownToTheTuftBaseKeepingThePointCount) {
+    Cut c = cutBlade();
+    const std::size_t n = c.skeleton.points_m.size();
+    const glm::vec3 tip = c.skeleton.points_m.back();
+    rootSkeleton(c.skeleton, baseAt(c.root_m));
+    EXPECT_FALSE(c.skeleton.baseNotRooted);
+    ASSERT_EQ(c.skeleton.points_m.size(), n);
+    EXPECT_EQ(c.skeleton.width_m.size(), n);
+    EXPECT_EQ(c.skeleton.midline_px.size(), n);
+    EXPECT_LT(glm::distance(c.skeleton.points_m.front(), c.root_m), 1e-6f);
+    EXPECT_LT(glm::distance(c.skeleton.points_m.back(), tip), 1e-6f);
+    EXPECT_NEAR(c.skeleton.baseExtension_m, kHidden_m, 1e-3f);
+    // About a quarter of the points (30 of 120 mm) lie on the added piece, with the blade's width.
+    EXPECT_NEAR(static_cast<float>(c.skeleton.rootPoints) / static_cast<float>(n), 0.25f, 0.03f);
+    EXPECT_NEAR(c.skeleton.width_m.front(), 0.006f, 0.6e-3f);
+    const BladeFit fit = fitArchetype(c.skeleton);
+    EXPECT_NEAR(fit.archetype.height_m(), 0.12f, 1.5e-3f) << "height " << fit.archetype.height_m();
+    EXPECT_NEAR(fit.archetype.fit.baseExtension_mm, kHidden_m * 1e3f, 1.f);
+    EXPECT_FALSE(fit.archetype.fit.baseNotRooted);
+}
+
+TEST(BladeRoot, RefusesAndFlagsABaseFarFromTheBlade) {
+    Cut c = cutBlade();
+    const std::vector<glm::vec3> before = c.skeleton.points_m;
+    // 0.3 m below: more than the blade's visible length (90 mm) away.
+    rootSkeleton(c.skeleton, baseAt(c.root_m + glm::vec3(0.f, 0.3f, 0.f)));
+    EXPECT_TRUE(c.skeleton.baseNotRooted);
+    EXPECT_EQ(c.skeleton.points_m, before);
+    EXPECT_EQ(c.skeleton.baseExtension_m, 0.f);
+    ASSERT_FALSE(c.skeleton.reasons.empty());
+    EXPECT_NE(c.skeleton.reasons.back().find("not rooted"), std::string::npos);
+    EXPECT_TRUE(fitArchetype(c.skeleton).archetype.fit.baseNotRooted);
+}
+
+TEST(BladeRoot, RefusesABaseAboveTheBladesLowerEnd) {
+    Cut c = cutBlade();
+    const std::vector<glm::vec3> before = c.skeleton.points_m;
+    rootSkeleton(c.skeleton, baseAt(c.skeleton.points_m[40]));  // up the blade
+    EXPECT_TRUE(c.skeleton.baseNotRooted);
+    EXPECT_EQ(c.skeleton.points_m, before);
+}
+
+}  // namespace
+}  // namespace meadow::modeling
