@@ -5,14 +5,18 @@
 // Targets on the five blade-type presets at 0.6, 0.8 and 1.0 m: tip position error <= 3 mm RMS,
 // height error <= 2 % (mean), width-profile MAE <= 15 % of the blade's max width (mean).
 //
-// MEASURED: NOT MET (see the README, "Modeling accuracy"). The fitted spines lie on the true ones
-// (median of the per-blade largest distance ~1.3 mm), but the segmented blades do not cover the
-// whole blade: their base starts at 5-35 % of the true arc length (where the tuft's blades meet
-// and the ground is removed) and their tip ends at 75-97 % (thin tips fall below the sensor's
-// resolution and lateral noise). Tip and height errors therefore measure the visible extent,
-// which is decided upstream of the fit. The test asserts what the fit controls: the fitted spine
-// stays on the true spine (median over all blades of the largest distance <= 3 mm), and at least a
-// third of the true blades are fitted; it prints the targets' numbers.
+// Blades are fitted as capture fits them (fitSegmentedBlade): rooted at their cluster's base
+// point (the segmenter cuts a tuft's blades at their fork; blade_root.h), with the end-outward
+// depth rejection of skeleton.cpp at thin tips.
+//
+// MEASURED: NOT MET (see the README, "Modeling accuracy"). Rooting brought the fitted v0 to the
+// true root (mean 4.6-12 mm on the four leaf presets, was 30-45 mm) and the height error down
+// (6.5-17 %, was 23-31 %); width MAE 10-21 % (was 15.5-27 %). Still missing: the segmented tip ends
+// at ~90 % of the true length (thin tips fall below the sensor's resolution), so tip and height
+// stay short by that; slim grass is over-segmented (several pieces per blade, each rooted).
+// Asserted with margin: at least a third of the true blades fitted; on the four leaf presets
+// (slim grass excluded, see above) the mean v0 error <= 10 mm and the mean height error <= 15 %.
+// The targets are printed, not asserted.
 // MEADOW_MODELING_TABLE=1 prints the per-preset table; MEADOW_MODELING_VERBOSE=1 every blade.
 #include <gtest/gtest.h>
 
@@ -41,11 +45,14 @@ constexpr float kMaxHeightError = 0.02f;
 constexpr float kMaxWidthMaeFraction = 0.15f;
 constexpr double kMinMaskShare = 0.5;  // share of a segmented mask on its true label to match
 constexpr int kWidthComparisonSamples = 50;
-constexpr float kMaxMedianOffSpine_mm = 3.f;
+// Asserted on the leaf presets (all but slim grass), measured 6.8 mm and 11.2 %.
+constexpr float kMaxLeafV0Error_mm = 10.f;
+constexpr float kMaxLeafHeightError = 0.15f;
 
 struct Score {
     int truth = 0, fitted = 0, failed = 0;
     double tipSq_mm2 = 0.0, heightError = 0.0, widthFraction = 0.0, spineRms_mm = 0.0;
+    double v0_mm = 0.0;              // sum of the fitted root's distance to the true root
     std::vector<float> offSpine_mm;  // per blade: largest distance of the fitted spine to the truth
     std::vector<float> baseFraction, tipFraction;  // where the fitted ends lie on the true spine
     void add(const Score& o) {
@@ -54,7 +61,7 @@ struct Score {
         tipFraction.insert(tipFraction.end(), o.tipFraction.begin(), o.tipFraction.end());
         truth += o.truth, fitted += o.fitted, failed += o.failed;
         tipSq_mm2 += o.tipSq_mm2, heightError += o.heightError, widthFraction += o.widthFraction;
-        spineRms_mm += o.spineRms_mm;
+        spineRms_mm += o.spineRms_mm, v0_mm += o.v0_mm;
     }
     static float median(std::vector<float> v) {
         if (v.empty()) return 0.f;
@@ -64,6 +71,7 @@ struct Score {
     [[nodiscard]] double tipRms_mm() const { return fitted ? std::sqrt(tipSq_mm2 / fitted) : 0.0; }
     [[nodiscard]] double meanHeightError() const { return fitted ? heightError / fitted : 0.0; }
     [[nodiscard]] double meanWidthFraction() const { return fitted ? widthFraction / fitted : 0.0; }
+    [[nodiscard]] double meanV0_mm() const { return fitted ? v0_mm / fitted : 0.0; }
 };
 
 Score run(const std::string& presetName, float distance_m, std::uint64_t seed) {
@@ -85,7 +93,8 @@ Score run(const std::string& presetName, float distance_m, std::uint64_t seed) {
 
     Score score;
     score.truth = static_cast<int>(tuft.blades.size());
-    for (const capture::BladeContour& blade : seg.blades) {
+    for (std::size_t index = 0; index < seg.blades.size(); ++index) {
+        const capture::BladeContour& blade = seg.blades[index];
         if (!blade.flags.empty()) continue;
         // Majority true label under the mask.
         std::map<int, int> votes;
@@ -101,7 +110,7 @@ Score run(const std::string& presetName, float distance_m, std::uint64_t seed) {
         const SyntheticBlade& truth = tuft.blades.at(static_cast<std::size_t>(best->first - 1));
         BladeFit fit;
         try {
-            fit = fitBlade(blade, frame);
+            fit = fitSegmentedBlade(seg, index, frame);
         } catch (const ModelingError&) {
             ++score.failed;
             continue;
@@ -120,6 +129,7 @@ Score run(const std::string& presetName, float distance_m, std::uint64_t seed) {
         score.widthFraction +=
             widthSum / (kWidthComparisonSamples + 1) / truth.archetype.width.maxWidth_m();
         score.spineRms_mm += fit.archetype.fit.spineRms_mm;
+        score.v0_mm += glm::distance(fit.spineCamera_m.v0, truthSpine.v0) * 1e3f;
         // Where the fitted ends lie on the true spine: arc fraction of the closest point and the
         // distance off the spine (separates a hidden / cut base from a fit error).
         const auto onTruth = [&](const glm::vec3& p) {
@@ -155,15 +165,16 @@ Score run(const std::string& presetName, float distance_m, std::uint64_t seed) {
     return score;
 }
 
-TEST(ModelingAccuracy, FittedSpinesLieOnTrueSpinesAtNominalNoiseAndTargetsAreReported) {
+TEST(ModelingAccuracy, LeafBladesAreRootedAtTheirTrueRootAtNominalNoiseAndTargetsAreReported) {
     const bool table = std::getenv("MEADOW_MODELING_TABLE") != nullptr;
     if (table)
-        std::cout << "| preset | distance | blades fitted / true | tip RMS (mm) | height error | "
+        std::cout << "| preset | distance | blades fitted / true | v0 error (mm, mean) | tip RMS "
+                     "(mm) | height error | "
                      "width MAE / max "
                      "width | spine RMS (mm) | fitted spine to true (median, mm) | base s / tip s "
                      "(median) "
-                     "|\n|---|---|---|---|---|---|---|---|---|\n";
-    Score all;
+                     "|\n|---|---|---|---|---|---|---|---|---|---|\n";
+    Score all, leaves;
     for (const std::string& preset : kBladeTypePresets) {
         Score perPreset;
         for (const float distance_m : {0.6f, 0.8f, 1.0f}) {
@@ -172,28 +183,32 @@ TEST(ModelingAccuracy, FittedSpinesLieOnTrueSpinesAtNominalNoiseAndTargetsAreRep
             if (table)
                 std::cout << std::fixed << std::setprecision(3) << "| " << preset << " | "
                           << distance_m << " | " << s.fitted << " / " << s.truth << " | "
-                          << s.tipRms_mm() << " | " << 100.0 * s.meanHeightError() << " % | "
-                          << 100.0 * s.meanWidthFraction() << " % | "
-                          << (s.fitted ? s.spineRms_mm / s.fitted : 0.0) << " | "
+                          << s.meanV0_mm() << " | " << s.tipRms_mm() << " | "
+                          << 100.0 * s.meanHeightError() << " % | " << 100.0 * s.meanWidthFraction()
+                          << " % | " << (s.fitted ? s.spineRms_mm / s.fitted : 0.0) << " | "
                           << Score::median(s.offSpine_mm) << " | " << Score::median(s.baseFraction)
                           << " / " << Score::median(s.tipFraction) << " |\n";
         }
         std::cout << "  " << preset << ": fitted " << perPreset.fitted << "/" << perPreset.truth
-                  << ", tip RMS " << perPreset.tipRms_mm() << " mm, height error "
+                  << ", v0 error " << perPreset.meanV0_mm() << " mm, tip RMS "
+                  << perPreset.tipRms_mm() << " mm, height error "
                   << 100.0 * perPreset.meanHeightError() << " %, width MAE "
                   << 100.0 * perPreset.meanWidthFraction() << " % of max width\n";
         all.add(perPreset);
+        if (preset != "slim-grass") leaves.add(perPreset);
     }
+    EXPECT_LE(leaves.meanV0_mm(), kMaxLeafV0Error_mm);
+    EXPECT_LE(leaves.meanHeightError(), kMaxLeafHeightError);
     EXPECT_GE(3 * all.fitted,
-              all.truth);  // measured 63 of 87; the rest are flagged or unmatched upstream
+              all.truth);  // measured 78 of 87; the rest are flagged or unmatched upstream
     std::cout << "  targets (not asserted, see the header): tip RMS <= " << kMaxTipRms_mm
               << " mm, height error <= " << 100.f * kMaxHeightError
               << " %, width MAE <= " << 100.f * kMaxWidthMaeFraction << " %\n";
     std::cout << "  all: median fitted-spine-to-truth " << Score::median(all.offSpine_mm)
               << " mm, base at s " << Score::median(all.baseFraction) << ", tip at s "
               << Score::median(all.tipFraction) << "; fitted " << all.fitted << "/" << all.truth
-              << ", tip RMS " << all.tipRms_mm() << " mm, height error "
-              << 100.0 * all.meanHeightError() << " %, width MAE "
+              << ", v0 error " << all.meanV0_mm() << " mm, tip RMS " << all.tipRms_mm()
+              << " mm, height error " << 100.0 * all.meanHeightError() << " %, width MAE "
               << 100.0 * all.meanWidthFraction() << " % of max width\n";
 }
 
