@@ -117,6 +117,11 @@ void addCaptureCommand(CLI::App& app) {
                     "OrganizedMultiPlaneSegmentation) or none")
         ->default_val("ransac")
         ->check(CLI::IsMember({"ransac", "organized", "none"}));
+    cmd->add_option("--edge-smoothing", args->options.segmenter.edgeSmoothingSigma_px,
+                    "Sigma in pixels of the Gaussian that smooths the mask's ragged edge before "
+                    "the contour (0 = off; off keeps blades under ~2 px wide)")
+        ->default_val(1.0f)
+        ->check(CLI::Range(0.f, 20.f));
     cmd->add_flag(
         "--keep-flagged", args->options.keepFlagged,
         "Also model blades the segmenter flagged (overlapping, curling, too thin, base hidden)");

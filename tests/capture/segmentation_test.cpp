@@ -336,6 +336,7 @@ TEST(SegmenterFlags, HairThinBladeIsTooThin) {
     cv::rectangle(mask, {300, 400}, {340, 410}, 255, cv::FILLED);
     SegmenterParams p;
     p.closeKernel_px = 0;
+    p.edgeSmoothingSigma_px = 0.f;  // a sigma-1 Gaussian at threshold 1/2 erases a 1 px line
     const Segmentation s = Segmenter(p).segmentMask(mask);
     ASSERT_FALSE(s.empty()) << s.summary();
     EXPECT_TRUE(std::any_of(s.blades.begin(), s.blades.end(), [](const auto& b) {
@@ -380,6 +381,27 @@ TEST(SegmenterFlags, DISABLED_BladeCurlingBackIsFlagged) {
     EXPECT_TRUE(std::any_of(s.blades.begin(), s.blades.end(), [](const auto& b) {
         return hasFlag(b, BladeFlag::CurlsSideways);
     })) << s.summary();
+}
+
+TEST(Segmenter, EdgeSmoothingStraightensARaggedEdge) {
+    // A 12 px wide bar whose edge pixels are displaced at random by one pixel, as the sensor's
+    // lateral noise does: smoothing brings the mask closer to the true bar.
+    cv::Mat1b truth(120, 160, std::uint8_t{0});
+    cv::rectangle(truth, {20, 54}, {139, 65}, 255, cv::FILLED);
+    cv::Mat1b ragged = truth.clone();
+    cv::RNG rng(7);
+    for (int x = 20; x < 140; ++x)
+        for (int y : {53, 54, 65, 66}) ragged(y, x) = rng.uniform(0, 2) ? 255 : 0;
+    const auto errorPixels = [&](float sigma) {
+        SegmenterParams p;
+        p.closeKernel_px = 0;
+        p.edgeSmoothingSigma_px = sigma;
+        const Segmentation s = Segmenter(p).segmentMask(ragged);
+        return cv::countNonZero(s.clusterMask ^ truth);
+    };
+    const int raw = errorPixels(0.f), smoothed = errorPixels(1.f);
+    EXPECT_GT(raw, 200);  // half of 4 x 120 edge pixels
+    EXPECT_LT(smoothed, raw * 2 / 3) << "raw " << raw;
 }
 
 TEST(SegmenterFlags, StraightBladesRaiseNoFlags) {

@@ -79,6 +79,7 @@ std::string SegmenterParams::problem() const {
         {"minValidFrameFraction", minValidFrameFraction, 0.f, 1.f},
         {"baseBandFraction", baseBandFraction, 0.f, 1.f},
         {"smoothingSigma_px", smoothingSigma_px, 0.f, 1000.f},
+        {"edgeSmoothingSigma_px", edgeSmoothingSigma_px, 0.f, 20.f},
         {"minPersistence_px", minPersistence_px, 0.f, 1e5f},
         {"minPersistenceFraction", minPersistenceFraction, 0.f, 1.f},
         {"minResolvableWidth_px", minResolvableWidth_px, 0.f, 1000.f},

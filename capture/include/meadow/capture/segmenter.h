@@ -93,7 +93,12 @@ struct SegmenterParams {
     float minValidFrameFraction = 0.5f;
 
     // --- Morphological clean-up.
-    int closeKernel_px = 3;     // 0 or 1 = no closing; closing bridges 1 px dropouts
+    int closeKernel_px = 3;  // 0 or 1 = no closing; closing bridges 1 px dropouts
+    // Gaussian of this sigma over the binary mask, thresholded at one half: a smooth boundary
+    // in place of the sensor's ragged one (lateral noise moves edge pixels ~0.8 px each way).
+    // Measured at nominal noise (3 seeds): median IoU +0.02-0.04 on the leaf presets; it also
+    // thins blades under ~2 px away, so 0 turns it off for captures of very slim grass.
+    float edgeSmoothingSigma_px = 1.0f;
     int openKernel_px = 0;      // opening removes thin blades too, so off by default
     int minRegionArea_px = 60;  // connected regions smaller than this are dropped
     int maxHoleArea_px = 30;    // enclosed holes up to this size are filled (dropouts)
