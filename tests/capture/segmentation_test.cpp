@@ -129,7 +129,10 @@ TEST(Segmenter, KeepsRecallUnderDepthNoiseDropoutsAndFlyingPixels) {
     const Match m = match(drawn.labels, drawn.bladeCount, s);
     EXPECT_GE(m.recall(), 0.95) << describe(m, s);
     EXPECT_GE(m.precision(), 0.85) << describe(m, s);
-    EXPECT_GE(m.medianIou(), 0.7) << describe(m, s);  // measured 0.76
+    // Measured 0.69 (0.76 with BladeMaskMethod::NearestContour): on this wide drawn fan the
+    // wedges through the base point cut the overlapping bases worse, while on every simulated
+    // preset they cut them better (segmentation_accuracy_test, README).
+    EXPECT_GE(m.medianIou(), 0.65) << describe(m, s);
 }
 
 TEST(Segmenter, BothPlaneFittersRemoveTheGroundAndKeepTheBlades) {

@@ -177,11 +177,14 @@ std::vector<BladeContour> partitionCluster(BladeCluster& cluster, const cv::Mat1
         pieces.push_back(std::move(blade));
     }
 
-    // Masks (in the box first).
-    std::vector<cv::Mat1b> boxMasks(pieces.size());
-    if (params.bladeMask == BladeMaskMethod::NearestContour) {
-        // Every cluster pixel goes to the blade whose contour piece is nearest: a Voronoi split
-        // of the cluster by contour pieces (cv::distanceTransform with per-pixel labels).
+    // Masks (in the box first). Every cluster pixel goes to the blade whose contour piece is
+    // nearest: a Voronoi split of the cluster by contour pieces (cv::distanceTransform with
+    // per-pixel labels). That hands the shared base, below the forks, to the two outermost
+    // blades, whose pieces enclose it; with the Wedge method a pixel inside exactly one blade's
+    // wedge (its piece closed through the base point) goes to that blade instead, and only
+    // pixels in no wedge or in several (a contour not star-shaped about the base) fall back.
+    cv::Mat1i owner(box.size(), 0);  // blade index + 1
+    {
         cv::Mat1b seeds(box.size(), std::uint8_t{255});
         cv::Mat1i seedBlade(box.size(), 0);
         for (size_t k = 0; k < pieces.size(); ++k)
@@ -198,29 +201,33 @@ std::vector<BladeContour> partitionCluster(BladeCluster& cluster, const cv::Mat1
         cv::Mat1i labels;
         cv::distanceTransform(seeds, dist, labels, cv::DIST_L2, cv::DIST_MASK_5,
                               cv::DIST_LABEL_PIXEL);
-        for (auto& m : boxMasks) m = cv::Mat1b(box.size(), std::uint8_t{0});
         for (int y = 0; y < region.rows; ++y)
             for (int x = 0; x < region.cols; ++x) {
-                if (!region(y, x)) continue;
                 const int l = labels(y, x);
-                if (l <= 0 || l >= static_cast<int>(bladeOfLabel.size())) continue;
-                const int k = bladeOfLabel[static_cast<size_t>(l)] - 1;
-                if (k >= 0) boxMasks[static_cast<size_t>(k)](y, x) = 255;
+                if (region(y, x) && l > 0 && l < static_cast<int>(bladeOfLabel.size()))
+                    owner(y, x) = bladeOfLabel[static_cast<size_t>(l)];
             }
-    } else {
-        // The wedge between the piece and the reference point, within the cluster.
-        const cv::Point reference(cvRound(cluster.reference_px.x) - box.x,
-                                  cvRound(cluster.reference_px.y) - box.y);
+    }
+    if (params.bladeMask == BladeMaskMethod::Wedge &&
+        params.reference == ReferencePoint::BasePoint && pieces.size() > 1) {
+        const cv::Point base(cvRound(cluster.reference_px.x) - box.x,
+                             cvRound(cluster.reference_px.y) - box.y);
+        cv::Mat1i covering(box.size(), 0), wedgeOwner(box.size(), 0);
         for (size_t k = 0; k < pieces.size(); ++k) {
             std::vector<cv::Point> polygon;
             for (const auto& p : pieces[k].contour_px) polygon.push_back(p - box.tl());
-            boxMasks[k] = cv::Mat1b(box.size(), std::uint8_t{0});
-            cv::polylines(boxMasks[k], std::vector<std::vector<cv::Point>>{polygon}, false, 255);
-            polygon.push_back(reference);
-            cv::fillPoly(boxMasks[k], std::vector<std::vector<cv::Point>>{polygon}, 255);
-            boxMasks[k] &= region;
+            polygon.push_back(base);
+            cv::Mat1b wedge(box.size(), std::uint8_t{0});
+            cv::fillPoly(wedge, std::vector<std::vector<cv::Point>>{polygon}, 255);
+            cv::add(covering, 1, covering, wedge);
+            wedgeOwner.setTo(static_cast<int>(k) + 1, wedge);
         }
+        for (int y = 0; y < region.rows; ++y)
+            for (int x = 0; x < region.cols; ++x)
+                if (region(y, x) && covering(y, x) == 1) owner(y, x) = wedgeOwner(y, x);
     }
+    std::vector<cv::Mat1b> boxMasks(pieces.size());
+    for (size_t k = 0; k < pieces.size(); ++k) boxMasks[k] = owner == static_cast<int>(k) + 1;
     std::vector<BladeContour> blades;
     int empty = 0;
     for (size_t k = 0; k < pieces.size(); ++k) {

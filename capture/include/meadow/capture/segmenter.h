@@ -43,7 +43,9 @@ enum class ReferencePoint {
 };
 enum class BladeMaskMethod {
     NearestContour,  // each cluster pixel to the blade whose contour piece is nearest
-    Wedge,           // the polygon of the blade's contour piece closed through the reference
+    Wedge,  // inside exactly one blade's piece closed through the base point: that blade; else
+            // NearestContour (needs ReferencePoint::BasePoint; with the centre it is
+            // NearestContour)
 };
 std::string toString(PlaneMethod);
 std::string toString(OutlierMethod);
@@ -113,7 +115,11 @@ struct SegmenterParams {
     float minPersistence_px = 6.0f;
     float minPersistenceFraction = 0.06f;
     int minBladeContour_px = 12;  // contour pieces shorter than this merge into a neighbour
-    BladeMaskMethod bladeMask = BladeMaskMethod::NearestContour;
+    // Which blade owns the shared base below the forks, where blades overlap. Measured at
+    // nominal noise (3 seeds): Wedge lifts median IoU over NearestContour by 0.01-0.03 on the
+    // leaf presets (quadratic-leaf 0.78 -> 0.81) and 0.08 on touching leaves; NearestContour
+    // gives the whole base to the two outermost blades, whose contour pieces enclose it.
+    BladeMaskMethod bladeMask = BladeMaskMethod::Wedge;
 
     // --- Flags.
     float minResolvableWidth_px = 2.0f;  // TooThin below this mean width
