@@ -293,14 +293,17 @@ TuftCapture captureTuft(const capture::Segmenter& segmenter, const Scene& scene,
     TuftCapture out;
     out.segmentation = segmentScene(segmenter, scene, options.fusionFrames);
     const DepthFrame& depthFrame = scene.frames.front();  // capture fits on the group's first
-    for (const BladeContour& blade : out.segmentation.blades) {
+    for (std::size_t index = 0; index < out.segmentation.blades.size(); ++index) {
+        const BladeContour& blade = out.segmentation.blades[index];
         const bool flagged = std::any_of(blade.flags.begin(), blade.flags.end(), disqualifies);
         if (flagged && !options.keepFlagged) {
             out.fits.emplace_back();
             continue;
         }
         try {
-            out.fits.emplace_back(modeling::fitBlade(blade, depthFrame, options.fit));
+            // Rooted at the cluster's base point, as `meadow capture` fits.
+            out.fits.emplace_back(
+                modeling::fitSegmentedBlade(out.segmentation, index, depthFrame, options.fit));
         } catch (const modeling::ModelingError&) {
             out.fits.emplace_back();
             ++out.fitFailures;
