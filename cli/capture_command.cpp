@@ -119,7 +119,7 @@ void addCaptureCommand(CLI::App& app) {
         ->check(CLI::IsMember({"ransac", "organized", "none"}));
     cmd->add_option("--edge-smoothing", args->options.segmenter.edgeSmoothingSigma_px,
                     "Sigma in pixels of the Gaussian that smooths the mask's ragged edge before "
-                    "the contour (0 = off; off keeps blades under ~2 px wide)")
+                    "the contour (0 = off; parts under 3 px wide are never smoothed)")
         ->default_val(1.0f)
         ->check(CLI::Range(0.f, 20.f));
     cmd->add_flag(

@@ -339,7 +339,6 @@ TEST(SegmenterFlags, HairThinBladeIsTooThin) {
     cv::rectangle(mask, {300, 400}, {340, 410}, 255, cv::FILLED);
     SegmenterParams p;
     p.closeKernel_px = 0;
-    p.edgeSmoothingSigma_px = 0.f;  // a sigma-1 Gaussian at threshold 1/2 erases a 1 px line
     const Segmentation s = Segmenter(p).segmentMask(mask);
     ASSERT_FALSE(s.empty()) << s.summary();
     EXPECT_TRUE(std::any_of(s.blades.begin(), s.blades.end(), [](const auto& b) {

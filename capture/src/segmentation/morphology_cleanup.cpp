@@ -26,7 +26,13 @@ void cleanUpMask(const SegmenterParams& params, cv::Mat1b& mask, StageReport& re
         const int before = cv::countNonZero(mask);
         cv::Mat1b blurred;
         cv::GaussianBlur(mask, blurred, {0, 0}, params.edgeSmoothingSigma_px);
-        mask = blurred >= 128;  // the half-way level of a 0/255 mask
+        // Structures under 3 px wide (what a 3x3 opening removes, and not within a pixel of
+        // what it keeps) are kept as they are: the half-way threshold would erase them.
+        const cv::Mat cross = cv::getStructuringElement(cv::MORPH_ELLIPSE, {3, 3});
+        cv::Mat1b thick;
+        cv::morphologyEx(mask, thick, cv::MORPH_OPEN, cross);
+        cv::dilate(thick, thick, cross);
+        mask = (blurred >= 128) | (mask & ~thick);  // 128: the half-way level of a 0/255 mask
         report.notes.push_back("edge smoothing (sigma " +
                                std::to_string(params.edgeSmoothingSigma_px).substr(0, 4) +
                                " px): " + std::to_string(before) + " -> " +
