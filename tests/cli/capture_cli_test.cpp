@@ -40,6 +40,21 @@ TEST(CaptureCli, SynthesisedTuftBecomesALibraryThatLoads) {
     EXPECT_NE(r.output.find("archetype(s)"), std::string::npos) << r.output;
 }
 
+// On this single frame RANSAC once took the tuft's own fan (leaning ~42 deg toward the camera)
+// for the ground, removed the tuft's base and left 6 blade pieces cut at mid-height from 5
+// blades. A plane with the back wall beneath it is no longer taken for the ground.
+TEST(CaptureCli, APlaneThroughTheTuftIsNotRemovedAsGround) {
+    const fs::path dir = freshTempDir("capture_fan_plane");
+    ASSERT_EQ(runMeadow("synth --preset quadratic-leaf --seed 1 --frames 1 --out " +
+                        (dir / "rec").string())
+                  .exitCode,
+              0);
+    const auto r = runMeadow("capture " + (dir / "rec").string() + " --fuse 1 --out " +
+                             (dir / "lib.json").string());
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_NE(r.output.find("captured 5 of 5 blade(s)"), std::string::npos) << r.output;
+}
+
 TEST(CaptureCli, MissingSourceIsOneClearLineAndANonZeroExit) {
     const fs::path dir = freshTempDir("capture_missing");
     const auto r = runMeadow("capture /nonexistent/recording --out " + (dir / "lib.json").string());

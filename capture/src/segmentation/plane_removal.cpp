@@ -46,6 +46,14 @@ constexpr int kExtraPlaneAttempts = 2;
 // (0.5 % = 1536 px at 640x480): ground, not the band where a plane crosses a blade.
 constexpr float kMinGroundComponentFraction = 0.005f;
 constexpr double kSmallGroundMeanDistanceFraction = 0.3;
+// Nothing is seen through the ground: a plane with more than kMaxShareBelow of the masked
+// points farther than kBelowTolerances plane tolerances beneath it (on the side away from the
+// camera) is not the ground. A plane through the tuft's fan, which leans 36-48 deg toward the
+// camera and passes the tilt and solidity tests, has the back wall and the far blades beneath
+// it (quadratic-leaf seed 1, one frame: such a plane removed the tuft's base and cut its blades
+// at mid-height).
+constexpr float kBelowTolerances = 3.0f;
+constexpr double kMaxShareBelow = 0.05;
 
 struct Plane {
     Eigen::Vector4f coefficients;  // n.x + d = 0, |n| = 1
@@ -85,6 +93,25 @@ pcl::PointCloud<pcl::PointXYZ>::Ptr sampleCloud(const cv::Mat1w& depth_mm, const
                 cloud->push_back(p);
         }
     return cloud;
+}
+
+// Share of the masked pixels (on a stride) lying more than `depth_m` beneath the plane, i.e. on
+// the side away from the camera.
+double shareBelow(const cv::Mat1w& depth_mm, const Intrinsics& K, const Plane& plane, float depth_m,
+                  const cv::Mat1b& mask, int stride) {
+    Eigen::Vector4f c = plane.coefficients;
+    if (c[3] < 0.f) c = -c;  // the camera (origin) on the positive side
+    double all = 0, below = 0;
+    for (int y = 0; y < depth_mm.rows; y += stride)
+        for (int x = 0; x < depth_mm.cols; x += stride) {
+            const auto d = depth_mm(y, x);
+            if (d == 0 || mask(y, x) == 0) continue;
+            const auto v = K.backProject(static_cast<float>(x), static_cast<float>(y),
+                                         static_cast<float>(d) / kMillimetresPerMetre);
+            all += 1;
+            below += c[0] * v.x + c[1] * v.y + c[2] * v.z + c[3] < -depth_m ? 1 : 0;
+        }
+    return all > 0 ? below / all : 0.0;
 }
 
 // Clears the mask pixels within tolerance of the plane that form large connected regions;
@@ -209,6 +236,15 @@ std::vector<Plane> ransacPlanes(const cv::Mat1w& depth_mm, const Intrinsics& K,
                                              coefficients.values[2], coefficients.values[3]);
         plane.coefficients /= plane.coefficients.head<3>().norm();
         if (tilt_deg(plane.coefficients.head<3>()) > params.maxGroundTilt_deg) break;
+        if (const double below = shareBelow(
+                depth_mm, K, plane, kBelowTolerances * params.planeDistance_m, mask, stride);
+            below > kMaxShareBelow) {
+            notes.push_back("kept a plane of " + std::to_string(inliers.indices.size()) +
+                            " samples: " + std::to_string(static_cast<int>(100 * below)) +
+                            " % of the points lie beneath it, so it is not the ground");
+            clearPlane(depth_mm, K, plane, params.planeDistance_m, candidates);
+            continue;
+        }
         const float solid =
             solidity(depth_mm, K, plane, params.planeDistance_m, candidates, stride);
         if (solid < kMinPlaneSolidity) {
@@ -261,6 +297,15 @@ std::vector<Plane> organizedPlanes(const cv::Mat1w& depth_mm, const Intrinsics& 
         if (tilt_deg(plane.coefficients.head<3>()) > params.maxGroundTilt_deg) {
             notes.push_back("kept a plane tilted beyond maxGroundTilt_deg (" +
                             std::to_string(r.getCount()) + " samples): not ground");
+            continue;
+        }
+        if (const double below =
+                shareBelow(depth_mm, K, plane, kBelowTolerances * params.planeDistance_m, mask,
+                           params.planeSampleStride_px);
+            below > kMaxShareBelow) {
+            notes.push_back("kept a plane of " + std::to_string(r.getCount()) +
+                            " samples: " + std::to_string(static_cast<int>(100 * below)) +
+                            " % of the points lie beneath it, so it is not the ground");
             continue;
         }
         if (solidity(depth_mm, K, plane, params.planeDistance_m, mask,
