@@ -79,15 +79,19 @@ BladeFit fitArchetype(const Skeleton& skeleton, const BladeFitParams& params, co
     r.skeletonPoints = static_cast<int>(points.size());
     r.baseExtension_mm = skeleton.baseExtension_m * kMillimetresPerMetre;
     r.baseNotRooted = skeleton.baseNotRooted;
+    r.tipExtension_mm = skeleton.tipExtension_m * kMillimetresPerMetre;
     if (!mask.empty() && intrinsics != nullptr && skeleton.width_px.size() == points.size()) {
         const std::vector<float> dt_px = distanceTransformWidth_px(mask, skeleton.midline_px);
         double sum = 0.0;
         int used = 0;
         for (std::size_t j = 0; j < points.size(); ++j) {
             const float f = static_cast<float>(j) / static_cast<float>(points.size() - 1);
-            // Points on a rooting piece (blade_root.h) have no contour behind them.
+            // Points on a rooting piece (blade_root.h) or a tip extension (blade_tip.h) have no
+            // contour behind them.
             if (f < kWidthCheckMargin || f > 1.f - kWidthCheckMargin ||
-                static_cast<int>(j) < skeleton.rootPoints || skeleton.width_px[j] <= 0.f)
+                static_cast<int>(j) < skeleton.rootPoints ||
+                static_cast<int>(points.size() - j) <= skeleton.tipPoints ||
+                skeleton.width_px[j] <= 0.f)
                 continue;
             const float metresPerPixel = skeleton.width_m[j] / skeleton.width_px[j];
             sum += std::abs(dt_px[j] - skeleton.width_px[j]) * metresPerPixel;

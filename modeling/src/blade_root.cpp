@@ -8,11 +8,15 @@
 #include <utility>
 #include <vector>
 
+#include "chain_resample.h"
 #include "meadow/modeling/blade_fit.h"
 #include "meadow/modeling/error.h"
 
 namespace meadow::modeling {
 namespace {
+
+using detail::arcLengthStations;
+using detail::sampleAt;
 
 // Fraction of the chain, from its base end, whose direction is the blade's base direction for
 // the "base above the blade" test.
@@ -31,33 +35,6 @@ float medianOf(std::vector<float> v) {
     const auto mid = v.begin() + static_cast<std::ptrdiff_t>(v.size() / 2);
     std::nth_element(v.begin(), mid, v.end());
     return *mid;
-}
-
-// Position (segment index, fraction) of n points evenly spaced by arc length along a polyline.
-std::vector<std::pair<std::size_t, float>> arcLengthStations(const std::vector<glm::vec3>& p,
-                                                             int n) {
-    std::vector<float> cumulative(p.size(), 0.f);
-    for (std::size_t i = 1; i < p.size(); ++i)
-        cumulative[i] = cumulative[i - 1] + glm::distance(p[i - 1], p[i]);
-    std::vector<std::pair<std::size_t, float>> out;
-    std::size_t seg = 0;
-    for (int k = 0; k < n; ++k) {
-        const float target = cumulative.back() * static_cast<float>(k) / static_cast<float>(n - 1);
-        while (seg + 2 < p.size() && cumulative[seg + 1] < target) ++seg;
-        const float len = cumulative[seg + 1] - cumulative[seg];
-        out.emplace_back(seg,
-                         len > 0.f ? std::clamp((target - cumulative[seg]) / len, 0.f, 1.f) : 0.f);
-    }
-    return out;
-}
-
-template <class T>
-std::vector<T> sampleAt(const std::vector<T>& v,
-                        const std::vector<std::pair<std::size_t, float>>& stations) {
-    std::vector<T> out;
-    out.reserve(stations.size());
-    for (const auto& [i, f] : stations) out.push_back(v[i] + f * (v[i + 1] - v[i]));
-    return out;
 }
 
 }  // namespace
@@ -166,6 +143,11 @@ void rootSkeleton(Skeleton& s, const ClusterBase& base, const RootParams& params
     for (int i = 1; i < n; ++i)
         s.arcFraction[i] = s.arcFraction[i - 1] + glm::distance(s.points_m[i - 1], s.points_m[i]);
     const float total = s.arcFraction.back();
+    // A tip extension (blade_tip.h) keeps its length; its points are counted again.
+    if (s.tipPoints > 0)
+        s.tipPoints = static_cast<int>(
+            std::count_if(s.arcFraction.begin(), s.arcFraction.end(),
+                          [&](float a_m) { return a_m > total - s.tipExtension_m; }));
     for (float& f : s.arcFraction) f = total > 0.f ? f / total : 0.f;
 }
 
@@ -180,6 +162,7 @@ BladeFit fitSegmentedBlade(const capture::Segmentation& segmentation, std::size_
     if (src.frame < 0) src.frame = frame.index;
     if (src.bladeId == 0) src.bladeId = blade.id;
     Skeleton skeleton = extractSkeleton(blade, frame, params.skeleton);
+    if (params.tip.enabled) extendSkeletonTip(skeleton, params.tip);
     if (params.root.enabled) {
         if (const auto base = clusterBase(segmentation, blade.id, frame, params.root)) {
             rootSkeleton(skeleton, *base, params.root);

@@ -42,6 +42,9 @@ struct FitReport {
     // for and refused (the base is too far from the blade, or has no depth). Not in the JSON.
     float baseExtension_mm = 0.f;
     bool baseNotRooted = false;
+    // Tip extension (blade_tip.h): length of the straight piece added past the visible tip, where
+    // the tapering width's trend reaches zero (0: not extended). Not in the JSON.
+    float tipExtension_mm = 0.f;
 };
 
 // Where an archetype came from, so a library entry can be traced back to its capture.

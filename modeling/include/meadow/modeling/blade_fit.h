@@ -12,6 +12,7 @@
 #include "meadow/capture/depth_frame.h"
 #include "meadow/modeling/archetype.h"
 #include "meadow/modeling/blade_root.h"
+#include "meadow/modeling/blade_tip.h"
 #include "meadow/modeling/chain_simulation.h"
 #include "meadow/modeling/skeleton.h"
 #include "meadow/modeling/skeleton_refiner.h"
@@ -86,6 +87,7 @@ struct BladeFitParams {
     RefinerParams refiner;
     ChainSimulationParams simulation;  // up and gravity are overridden to the blade-local +Y
     RootParams root;                   // rooting at the tuft's base (fitSegmentedBlade only)
+    TipParams tip;                     // continuing past the visible tip (fitSegmentedBlade only)
 };
 
 struct BladeFit {
@@ -104,6 +106,7 @@ BladeFit fitArchetype(const Skeleton& skeleton, const BladeFitParams& params = {
 BladeFit fitBlade(const capture::BladeContour& blade, const capture::DepthFrame& frame,
                   const BladeFitParams& params = {}, const Source& source = {});
 // The blade segmentation.blades[bladeIndex] as capture fits it: extractSkeleton, then, when
+// params.tip.enabled, extendSkeletonTip (blade_tip.h), then, when
 // params.root.enabled, rootSkeleton at its cluster's base (blade_root.h; a blade whose base cannot
 // be found or is refused is fitted unrooted, with FitReport::baseNotRooted set), then
 // fitArchetype. Throws ModelingError as fitBlade does.

@@ -54,6 +54,10 @@ struct Skeleton {
     float baseExtension_m = 0.f;
     int rootPoints = 0;
     bool baseNotRooted = false;
+    // Tip extension (blade_tip.h): the straight piece added past the visible tip (0: none) and
+    // how many trailing points lie on it (no contour behind them).
+    float tipExtension_m = 0.f;
+    int tipPoints = 0;
     std::vector<std::string> reasons;  // one line per raised concern
 };
 

@@ -1,0 +1,112 @@
+// Continuing a segmented blade past its visible tip (blade_tip.h), on synthetic skeletons whose
+// upper part is cut off, as a thin tip falls below the sensor's resolution.
+#include "meadow/modeling/blade_tip.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <glm/geometric.hpp>
+
+#include "meadow/modeling/blade_fit.h"
+#include "modeling/blade_fit_synthetic_test.h"
+
+namespace meadow::modeling {
+namespace {
+
+// A straight blade 0.12 m long, leaning toward the camera and sideways, 6 mm wide at its base.
+constexpr float kHeight_m = 0.12f;
+constexpr float kBaseWidth_m = 0.006f;
+const glm::vec3 kRoot_m{0.01f, 0.08f, 0.5f};
+const glm::vec3 kDirection = glm::normalize(glm::vec3(0.3f, -1.f, -0.2f));
+constexpr int kPoints = 128;
+// The last 3 % of the visible chain falls to 0 width, as the contour closes and the smoothing
+// pulls the widths there down whatever the blade does (skeleton.cpp).
+constexpr float kClosingFraction = 0.03f;
+
+glm::vec3 truePoint(float arc_m) { return kRoot_m + arc_m * kDirection; }
+
+// The skeleton of the blade's part from its root up to `visibleFraction` of its length, with
+// width(arc) from `width`, a +-2 % ripple and the closing drop at the visible tip.
+template <class WidthFn>
+Skeleton cutSkeleton(float visibleFraction, WidthFn width) {
+    const capture::Intrinsics K = test::fineIntrinsics();
+    Skeleton s;
+    const float visible_m = visibleFraction * kHeight_m;
+    for (int i = 0; i < kPoints; ++i) {
+        const float f = static_cast<float>(i) / static_cast<float>(kPoints - 1);
+        const float arc_m = f * visible_m;
+        const glm::vec3 p = truePoint(arc_m);
+        const float closing = std::min(1.f, (1.f - f) / kClosingFraction);
+        const float w_m = width(arc_m) * (1.f + 0.02f * std::sin(37.f * f)) * closing;
+        s.points_m.push_back(p);
+        s.midline_px.push_back(K.project(p));
+        s.across_px.push_back({1.f, 0.f});
+        s.width_m.push_back(w_m);
+        s.width_px.push_back(w_m * K.fx_px / p.z);
+        s.depth_m.push_back(p.z);
+        s.arcFraction.push_back(f);
+    }
+    return s;
+}
+
+float triangle_m(float arc_m) { return kBaseWidth_m * (1.f - arc_m / kHeight_m); }
+
+TEST(BladeTip, TaperedBladeCutAt88PercentIsExtendedToWithinOneMillimetreOfItsTrueTip) {
+    Skeleton s = cutSkeleton(0.88f, triangle_m);
+    extendSkeletonTip(s);
+    ASSERT_EQ(s.points_m.size(), static_cast<std::size_t>(kPoints));
+    EXPECT_EQ(s.width_m.size(), s.points_m.size());
+    EXPECT_EQ(s.width_px.size(), s.points_m.size());
+    EXPECT_EQ(s.midline_px.size(), s.points_m.size());
+    EXPECT_EQ(s.depth_m.size(), s.points_m.size());
+    EXPECT_LT(glm::distance(s.points_m.front(), kRoot_m), 1e-6f);
+    EXPECT_LT(glm::distance(s.points_m.back(), truePoint(kHeight_m)), 1e-3f)
+        << "extension " << s.tipExtension_m * 1e3f << " mm, true 14.4 mm";
+    EXPECT_NEAR(s.tipExtension_m, 0.12f * kHeight_m, 1e-3f);
+    // About 12 % of the points lie on the added piece; the widths there follow the taper to 0.
+    EXPECT_NEAR(static_cast<float>(s.tipPoints) / kPoints, 0.12f, 0.02f);
+    EXPECT_EQ(s.width_m.back(), 0.f);
+    for (int i = kPoints - s.tipPoints; i < kPoints - 1; ++i) {
+        const float arc_m = glm::distance(s.points_m[i], kRoot_m);
+        EXPECT_NEAR(s.width_m[i], triangle_m(arc_m), 0.1f * kBaseWidth_m) << "point " << i;
+    }
+    // The fit reports the added length.
+    const BladeFit fit = fitArchetype(s);
+    EXPECT_NEAR(fit.archetype.fit.tipExtension_mm, s.tipExtension_m * 1e3f, 1e-3f);
+    EXPECT_NEAR(fit.archetype.height_m(), kHeight_m, 1e-3f);
+}
+
+TEST(BladeTip, BladeOfConstantWidthIsNotExtended) {
+    Skeleton s = cutSkeleton(0.88f, [](float) { return kBaseWidth_m; });
+    const Skeleton before = s;
+    extendSkeletonTip(s);
+    EXPECT_EQ(s.tipExtension_m, 0.f);
+    EXPECT_EQ(s.tipPoints, 0);
+    EXPECT_EQ(s.points_m, before.points_m);
+    EXPECT_EQ(s.width_m, before.width_m);
+}
+
+TEST(BladeTip, BladeWideningTowardItsTipIsNotExtended) {
+    Skeleton s = cutSkeleton(0.88f, [](float arc_m) { return kBaseWidth_m * (0.5f + arc_m); });
+    extendSkeletonTip(s);
+    EXPECT_EQ(s.tipExtension_m, 0.f);
+}
+
+TEST(BladeTip, ExtensionIsCappedAtItsFractionOfTheVisibleLength) {
+    // Cut at half its length, the blade's trend reaches zero a whole visible length further on.
+    Skeleton s = cutSkeleton(0.5f, triangle_m);
+    TipParams params;
+    extendSkeletonTip(s, params);
+    EXPECT_NEAR(s.tipExtension_m, params.maxExtensionFraction * 0.5f * kHeight_m, 1e-4f);
+}
+
+TEST(BladeTip, IsOnByDefaultAndOnlyInFitSegmentedBladeNotInFitArchetype) {
+    EXPECT_TRUE(BladeFitParams{}.tip.enabled);
+    Skeleton s = cutSkeleton(0.88f, triangle_m);
+    const BladeFit fit = fitArchetype(s);
+    EXPECT_EQ(fit.archetype.fit.tipExtension_mm, 0.f);
+    EXPECT_NEAR(fit.archetype.height_m(), 0.88f * kHeight_m, 1e-3f);
+}
+
+}  // namespace
+}  // namespace meadow::modeling
