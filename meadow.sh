@@ -47,8 +47,14 @@ jobs=$(nproc)
 build() {
   local preset=$1
   [ -f "build/$preset/build.ninja" ] || cmake --preset "$preset" >/dev/null
-  cmake --build --preset "$preset" -j "$jobs" | grep -vE '^\[[0-9]+/[0-9]+\] ' || true
-  test "${PIPESTATUS[0]}" -eq 0
+  # Ninja's progress lines and its "no work to do" are noise; errors and warnings stay.
+  # The build's own status decides (PIPESTATUS is read before anything else can reset it).
+  local status
+  set +e
+  cmake --build --preset "$preset" -j "$jobs" | grep -vE '^\[[0-9]+/[0-9]+\] |^ninja: no work to do'
+  status=${PIPESTATUS[0]}
+  set -e
+  return "$status"
 }
 
 export XDG_RUNTIME_DIR=${XDG_RUNTIME_DIR:-/tmp}
