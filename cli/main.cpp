@@ -9,6 +9,10 @@ int main(int argc, char** argv) {
     CLI::App app{"meadow: capture real grass with a depth camera and render meadows of it"};
     app.require_subcommand(1);
     app.set_version_flag("--version", "meadow 0.1.0");
+    // One line per error, as for meadow's own errors (CLI11's default adds a second line).
+    app.failure_message([](const CLI::App*, const CLI::Error& e) {
+        return "meadow: " + std::string(e.what()) + "; see --help for the options\n";
+    });
     meadow::cli::addCaptureCommand(app);
     meadow::cli::addConvertCommand(app);
     meadow::cli::addSynthCommand(app);
@@ -17,7 +21,8 @@ int main(int argc, char** argv) {
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {
-        return app.exit(e);
+        // --help and --version exit 0; a usage error exits 2 like every other user error.
+        return app.exit(e) == 0 ? 0 : 2;
     } catch (const meadow::Error& e) {
         std::cerr << "meadow: " << e.what() << '\n';
         return 2;

@@ -2,6 +2,7 @@
 // gets one clear line and a non-zero exit.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -105,13 +106,28 @@ TEST(SynthCli, OutOfRangeOrMalformedNumbersAreRejectedNamingTheOption) {
     for (const std::string bad : {"--frames 0", "--frames x", "--distance 3", "--distance -1",
                                   "--blades 13", "--noise -0.5", "--seed -4"}) {
         const auto r = runMeadow("synth --preset slim-grass --out " + out + " " + bad);
-        EXPECT_NE(r.exitCode, 0) << bad;
+        EXPECT_EQ(r.exitCode, 2) << bad;
         const std::string option = bad.substr(0, bad.find(' '));
         EXPECT_NE(r.output.find(option), std::string::npos) << bad << ": " << r.output;
+        EXPECT_EQ(countLines(r.output), 1) << bad << ": one line, got\n" << r.output;
     }
     const auto missing = runMeadow("synth --preset slim-grass");
-    EXPECT_NE(missing.exitCode, 0);
+    EXPECT_EQ(missing.exitCode, 2);
     EXPECT_NE(missing.output.find("--out"), std::string::npos) << missing.output;
+}
+
+TEST(MeadowCli, UsageErrorsAreOneLineExitingTwoAndHelpExitsZero) {
+    for (const std::string bad : {"", "fly", "synth --bogus", "render", "capture --out x.json"}) {
+        const auto r = runMeadow(bad);
+        EXPECT_EQ(r.exitCode, 2) << "'" << bad << "': " << r.output;
+        EXPECT_EQ(countLines(r.output), 1) << "'" << bad << "': one line, got\n" << r.output;
+        EXPECT_EQ(r.output.rfind("meadow: ", 0), 0u) << r.output;
+    }
+    for (const std::string verb : {"", "synth", "capture", "convert", "render"}) {
+        const auto r = runMeadow(verb + " --help");
+        EXPECT_EQ(r.exitCode, 0) << verb << ": " << r.output;
+        EXPECT_NE(r.output.find("Options:"), std::string::npos) << verb << ": " << r.output;
+    }
 }
 
 TEST(SynthCli, HelpExplainsEveryOptionAndItsDefault) {
