@@ -15,8 +15,10 @@
 #include "meadow/capture/simulated_sensor.h"
 #include "meadow/modeling/error.h"
 #include "meadow/modeling/synthesize.h"
+#include "ray_mesh.h"
 
 using namespace meadow::modeling;
+using meadow::modeling::test::rayDepth_m;
 namespace capture = meadow::capture;
 namespace fs = std::filesystem;
 
@@ -34,29 +36,6 @@ SyntheticTuft presetFrame(const std::string& name, int frame = 0, bool scenery =
     TuftSpec spec = buildPresetSpec(*preset, {});
     spec.scenery = scenery;
     return buildTuft(spec, frame);
-}
-
-// Depth (camera z, m) where the ray through pixel (u, v) first meets the mesh, or +inf.
-// Möller & Trumbore 1997, "Fast, minimum storage ray-triangle intersection".
-float rayDepth_m(const TriangleMesh& mesh, const capture::Intrinsics& k, int u, int v) {
-    const glm::vec3 d = k.backProject(static_cast<float>(u), static_cast<float>(v), 1.f);
-    float best = std::numeric_limits<float>::infinity();
-    for (const glm::uvec3& tri : mesh.triangles) {
-        const glm::vec3 a = mesh.positions_m[tri.x];
-        const glm::vec3 e1 = mesh.positions_m[tri.y] - a, e2 = mesh.positions_m[tri.z] - a;
-        const glm::vec3 p = glm::cross(d, e2);
-        const float det = glm::dot(e1, p);
-        if (std::abs(det) < 1e-12f) continue;
-        const float inv = 1.f / det;
-        const float bu = glm::dot(-a, p) * inv;
-        if (bu < 0.f || bu > 1.f) continue;
-        const glm::vec3 q = glm::cross(-a, e1);
-        const float bv = glm::dot(d, q) * inv;
-        if (bv < 0.f || bu + bv > 1.f) continue;
-        const float t = glm::dot(e2, q) * inv;  // d has z = 1, so t is the depth
-        if (t > 0.f) best = std::min(best, t);
-    }
-    return best;
 }
 
 // Every pixel of the 5 x 5 window around (u, v) carries the same label: no silhouette near.
