@@ -31,7 +31,8 @@ WidthProfile profileWithinTolerance(const std::vector<float>& s, const std::vect
 }  // namespace
 
 BladeFit fitArchetype(const Skeleton& skeleton, const BladeFitParams& params, const Source& source,
-                      const cv::Mat1b& mask, const capture::Intrinsics* intrinsics) {
+                      const cv::Mat1b& mask, const capture::Intrinsics* intrinsics,
+                      cv::Point maskOrigin_px) {
     const std::vector<glm::vec3>& points = skeleton.points_m;
     if (points.size() < 3 || skeleton.width_m.size() != points.size())
         throw ModelingError("fitArchetype: blade " + std::to_string(source.bladeId) + " of frame " +
@@ -81,7 +82,8 @@ BladeFit fitArchetype(const Skeleton& skeleton, const BladeFitParams& params, co
     r.baseNotRooted = skeleton.baseNotRooted;
     r.tipExtension_mm = skeleton.tipExtension_m * kMillimetresPerMetre;
     if (!mask.empty() && intrinsics != nullptr && skeleton.width_px.size() == points.size()) {
-        const std::vector<float> dt_px = distanceTransformWidth_px(mask, skeleton.midline_px);
+        const std::vector<float> dt_px =
+            distanceTransformWidth_px(mask, skeleton.midline_px, maskOrigin_px);
         double sum = 0.0;
         int used = 0;
         for (std::size_t j = 0; j < points.size(); ++j) {
@@ -125,7 +127,7 @@ BladeFit fitBlade(const capture::BladeContour& blade, const capture::DepthFrame&
     if (src.frame < 0) src.frame = frame.index;
     if (src.bladeId == 0) src.bladeId = blade.id;
     const Skeleton skeleton = extractSkeleton(blade, frame, params.skeleton);
-    return fitArchetype(skeleton, params, src, blade.mask, &frame.intrinsics);
+    return fitArchetype(skeleton, params, src, blade.mask, &frame.intrinsics, blade.maskOrigin_px);
 }
 
 }  // namespace meadow::modeling

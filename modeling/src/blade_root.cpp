@@ -174,7 +174,7 @@ BladeFit fitSegmentedBlade(const capture::Segmentation& segmentation, std::size_
                 std::to_string(params.root.maxDepthWindowRadius_px) + " px of its base point");
         }
     }
-    return fitArchetype(skeleton, params, src, blade.mask, &frame.intrinsics);
+    return fitArchetype(skeleton, params, src, blade.mask, &frame.intrinsics, blade.maskOrigin_px);
 }
 
 }  // namespace meadow::modeling

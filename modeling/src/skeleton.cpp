@@ -110,8 +110,9 @@ glm::vec2 safeNormalize(glm::vec2 v, glm::vec2 fallback) {
 // Median of the valid depth readings (metres) inside the blade mask in a square window around
 // (u, v); NaN when there is none. Restricting to the mask keeps the background out; the median
 // keeps the minority of flying pixels on the blade's edge out.
-float windowDepth_m(const capture::DepthFrame& frame, const cv::Mat1b& mask, glm::vec2 p_px,
-                    int r) {
+float windowDepth_m(const capture::DepthFrame& frame, const capture::BladeContour& blade,
+                    glm::vec2 p_px, int r) {
+    const bool useMask = !blade.mask.empty();
     const int u0 = static_cast<int>(std::lround(p_px.x)),
               v0 = static_cast<int>(std::lround(p_px.y));
     std::vector<float> values;
@@ -119,7 +120,7 @@ float windowDepth_m(const capture::DepthFrame& frame, const cv::Mat1b& mask, glm
         if (v < 0 || v >= frame.depth_mm.rows) continue;
         for (int u = u0 - r; u <= u0 + r; ++u) {
             if (u < 0 || u >= frame.depth_mm.cols) continue;
-            if (!mask.empty() && mask(v, u) == 0) continue;
+            if (useMask && !blade.covers({u, v})) continue;
             const std::uint16_t d = frame.depth_mm(v, u);
             if (d > 0) values.push_back(static_cast<float>(d) * 1e-3f);
         }
@@ -341,7 +342,8 @@ Skeleton matchSymmetricContour(const capture::BladeContour& blade, const Skeleto
                             std::to_string(params.maxSideLengthRatio) + ")");
     }
     if (!blade.mask.empty()) {
-        const std::vector<float> dtWidth = distanceTransformWidth_px(blade.mask, s.midline_px);
+        const std::vector<float> dtWidth =
+            distanceTransformWidth_px(blade.mask, s.midline_px, blade.maskOrigin_px);
         double sum = 0.0;
         int used = 0;
         for (int i = 0; i < n; ++i) {
@@ -365,14 +367,16 @@ Skeleton matchSymmetricContour(const capture::BladeContour& blade, const Skeleto
 Skeleton extractSkeleton(const capture::BladeContour& blade, const capture::DepthFrame& frame,
                          const SkeletonParams& params) {
     if (frame.depth_mm.empty()) throw std::invalid_argument("extractSkeleton: empty depth frame");
-    if (!blade.mask.empty() && blade.mask.size() != frame.depth_mm.size())
-        throw std::invalid_argument("extractSkeleton: blade mask and depth frame differ in size");
+    if (!blade.mask.empty() &&
+        (blade.maskBox_px() & cv::Rect(0, 0, frame.depth_mm.cols, frame.depth_mm.rows)) !=
+            blade.maskBox_px())
+        throw std::invalid_argument("extractSkeleton: the blade mask reaches outside the frame");
     Skeleton s = matchSymmetricContour(blade, params);
     const int n = static_cast<int>(s.midline_px.size());
 
     std::vector<float> z(static_cast<std::size_t>(n));
     for (int i = 0; i < n; ++i)
-        z[i] = windowDepth_m(frame, blade.mask, s.midline_px[i], params.depthWindowRadius_px);
+        z[i] = windowDepth_m(frame, blade, s.midline_px[i], params.depthWindowRadius_px);
     s.filledDepths = rejectAndFill(z, params.maxDepthJump_m);
     if (s.filledDepths >= n)
         throw ModelingError(

@@ -30,7 +30,8 @@ float bilinear(const cv::Mat1f& img, glm::vec2 p) {
 }  // namespace
 
 std::vector<float> distanceTransformWidth_px(const cv::Mat1b& mask,
-                                             const std::vector<glm::vec2>& midline_px) {
+                                             const std::vector<glm::vec2>& midline_px,
+                                             cv::Point maskOrigin_px) {
     if (mask.empty()) throw std::invalid_argument("distanceTransformWidth_px: empty mask");
     // Pad by one background pixel so a blade touching the image border still has a boundary.
     cv::Mat1b padded;
@@ -39,9 +40,11 @@ std::vector<float> distanceTransformWidth_px(const cv::Mat1b& mask,
     cv::distanceTransform(padded, dt, cv::DIST_L2, cv::DIST_MASK_PRECISE);
     std::vector<float> out;
     out.reserve(midline_px.size());
+    // Frame pixel p is padded pixel p - origin + 1. Outside the padded box the DT is 0, as on
+    // the background of a frame-sized mask; bilinear() clamps to the border, which is 0.
+    const glm::vec2 toPadded = glm::vec2(1.f) - glm::vec2(maskOrigin_px.x, maskOrigin_px.y);
     for (const glm::vec2& p : midline_px)
-        out.push_back(
-            std::max(0.f, 2.f * bilinear(dt, p + glm::vec2(1.f)) - kCentreToBackground_px));
+        out.push_back(std::max(0.f, 2.f * bilinear(dt, p + toPadded) - kCentreToBackground_px));
     return out;
 }
 

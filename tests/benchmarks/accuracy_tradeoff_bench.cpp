@@ -246,11 +246,14 @@ BladeMatch matchBlades(const cv::Mat1w& labels, const std::vector<BladeContour>&
         std::size_t t, f;
     };
     std::vector<Pair> pairs;
+    std::vector<cv::Mat1b> found;
+    for (const auto& b : blades)
+        found.push_back(truthMasks.empty() ? b.mask : b.frameMask(truthMasks[0].size()));
     for (std::size_t t = 0; t < truthMasks.size(); ++t)
         for (std::size_t f = 0; f < blades.size(); ++f) {
-            const double inter = cv::countNonZero(truthMasks[t] & blades[f].mask);
+            const double inter = cv::countNonZero(truthMasks[t] & found[f]);
             if (inter == 0) continue;
-            pairs.push_back({inter / cv::countNonZero(truthMasks[t] | blades[f].mask), t, f});
+            pairs.push_back({inter / cv::countNonZero(truthMasks[t] | found[f]), t, f});
         }
     std::sort(pairs.begin(), pairs.end(),
               [](const Pair& a, const Pair& b) { return a.iou > b.iou; });

@@ -54,8 +54,9 @@ Match match(const cv::Mat1w& labels, int bladeCount, const Segmentation& s) {
         double best = 0;
         size_t bestIndex = 0;
         for (size_t k = 0; k < s.blades.size(); ++k) {
-            const double inter = cv::countNonZero(truth & s.blades[k].mask);
-            const double uni = cv::countNonZero(truth | s.blades[k].mask);
+            const cv::Mat1b found = s.blades[k].frameMask(truth.size());
+            const double inter = cv::countNonZero(truth & found);
+            const double uni = cv::countNonZero(truth | found);
             if (uni > 0 && inter / uni > best) best = inter / uni, bestIndex = k;
         }
         m.iou.push_back(best);

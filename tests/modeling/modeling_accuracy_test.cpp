@@ -108,7 +108,8 @@ Score run(const std::string& presetName, float distance_m, std::uint64_t seed) {
         std::map<int, int> votes;
         for (int v = 0; v < blade.mask.rows; ++v)
             for (int u = 0; u < blade.mask.cols; ++u)
-                if (blade.mask(v, u)) ++votes[sim.labels(v, u)];
+                if (blade.mask(v, u))
+                    ++votes[sim.labels(blade.maskOrigin_px.y + v, blade.maskOrigin_px.x + u)];
         const auto best =
             std::max_element(votes.begin(), votes.end(),
                              [](const auto& a, const auto& b) { return a.second < b.second; });

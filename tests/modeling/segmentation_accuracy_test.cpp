@@ -68,12 +68,14 @@ Score score(const cv::Mat1w& labels, const Segmentation& s) {
         size_t t, f;
     };
     std::vector<Pair> pairs;
+    std::vector<cv::Mat1b> foundMasks;
+    for (const auto& b : s.blades) foundMasks.push_back(b.frameMask(labels.size()));
     for (size_t t = 0; t < ids.size(); ++t) {
         const cv::Mat1b truth = labels == ids[t];
         for (size_t f = 0; f < s.blades.size(); ++f) {
-            const double inter = cv::countNonZero(truth & s.blades[f].mask);
+            const double inter = cv::countNonZero(truth & foundMasks[f]);
             if (inter == 0) continue;
-            pairs.push_back({inter / cv::countNonZero(truth | s.blades[f].mask), t, f});
+            pairs.push_back({inter / cv::countNonZero(truth | foundMasks[f]), t, f});
         }
     }
     std::sort(pairs.begin(), pairs.end(),
@@ -92,7 +94,7 @@ Score score(const cv::Mat1w& labels, const Segmentation& s) {
         // owns in truth (mask too wide), true pixels outside the mask (mask too narrow), and
         // true pixels given to another blade (partition error).
         cv::Mat1b found = cv::Mat1b::zeros(labels.size());
-        for (const auto& b : s.blades) found |= b.mask;
+        for (const auto& m : foundMasks) found |= m;
         const cv::Mat1b truthAny = labels > 0;
         const int extra = cv::countNonZero(found & ~truthAny);
         const int missed = cv::countNonZero(truthAny & ~found);
@@ -101,7 +103,7 @@ Score score(const cv::Mat1w& labels, const Segmentation& s) {
             const cv::Mat1b truth = labels == ids[t];
             for (const auto& p : pairs)
                 if (p.t == t && best[t] == p.iou) {
-                    misassigned += cv::countNonZero(truth & found & ~s.blades[p.f].mask);
+                    misassigned += cv::countNonZero(truth & found & ~foundMasks[p.f]);
                     break;
                 }
         }

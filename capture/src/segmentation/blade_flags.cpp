@@ -113,7 +113,10 @@ void flagBlades(std::span<BladeContour> blades, const BladeCluster& cluster, cv:
         cv::drawContours(holes, std::vector<std::vector<cv::Point>>{cluster.contour_px}, 0, 255,
                          cv::FILLED);
         cv::Mat1b any(frameSize, std::uint8_t{0});
-        for (const auto& b : blades) any |= b.mask;
+        for (const auto& b : blades) {
+            cv::Mat1b under = any(b.maskBox_px());
+            under |= b.mask;
+        }
         holes &= ~any;
         cv::dilate(holes, holes, cv::Mat(), {-1, -1}, kHoleNeighbourhood_px);
     }
@@ -146,7 +149,7 @@ void flagBlades(std::span<BladeContour> blades, const BladeCluster& cluster, cv:
                     "centre line turns " + fixed(turn, 0) + " deg (> " +
                         fixed(params.curlTurn_deg, 0) +
                         "): the blade curls or folds; the symmetric match may pair wrong points");
-        if (hasHoles && cv::countNonZero(blade.mask & holes) > 0)
+        if (hasHoles && cv::countNonZero(blade.mask & holes(blade.maskBox_px())) > 0)
             addFlag(blade, BladeFlag::Overlapping,
                     "the blade borders a gap enclosed by blades: it crosses another blade");
         for (size_t k = 0; k < cluster.flags.size(); ++k)

@@ -15,6 +15,8 @@ namespace meadow::capture::segmentation {
 
 namespace {
 constexpr float kGaussianSupport_sigmas = 3.0f;
+// 1/16 (6 %) covers the 5x5 chamfer metric's departure from the Euclidean distance (< 2 %).
+constexpr int kChamferMarginDivisor = 16;
 
 int wrap(int i, int n) { return ((i % n) + n) % n; }
 }  // namespace
@@ -184,13 +186,62 @@ std::vector<BladeContour> partitionCluster(BladeCluster& cluster, const cv::Mat1
     // wedge (its piece closed through the base point) goes to that blade instead, and only
     // pixels in no wedge or in several (a contour not star-shaped about the base) fall back.
     cv::Mat1i owner(box.size(), 0);  // blade index + 1
-    {
-        cv::Mat1b seeds(box.size(), std::uint8_t{255});
-        cv::Mat1i seedBlade(box.size(), 0);
+    if (pieces.size() == 1) owner.setTo(1, region);
+    if (params.bladeMask == BladeMaskMethod::Wedge &&
+        params.reference == ReferencePoint::BasePoint && pieces.size() > 1) {
+        const cv::Point base(cvRound(cluster.reference_px.x) - box.x,
+                             cvRound(cluster.reference_px.y) - box.y);
+        cv::Mat1b covering(box.size(), std::uint8_t{0});  // wedges over a pixel (saturating)
+        cv::Mat1i wedgeOwner(box.size(), 0);
+        const cv::Rect inBox({0, 0}, box.size());
+        for (size_t k = 0; k < pieces.size(); ++k) {
+            std::vector<cv::Point> polygon;
+            for (const auto& p : pieces[k].contour_px) polygon.push_back(p - box.tl());
+            polygon.push_back(base);
+            // Each wedge is filled over its own bounding box only: a dozen of them over the
+            // whole cluster box cost more than the rest of the partition.
+            const cv::Rect wedgeBox = cv::boundingRect(polygon) & inBox;
+            if (wedgeBox.empty()) continue;
+            cv::Mat1b wedge(wedgeBox.size(), std::uint8_t{0});
+            cv::fillPoly(wedge, std::vector<std::vector<cv::Point>>{polygon}, 255, cv::LINE_8, 0,
+                         -wedgeBox.tl());
+            cv::Mat1b coveringHere = covering(wedgeBox);
+            cv::add(coveringHere, 1, coveringHere, wedge);
+            wedgeOwner(wedgeBox).setTo(static_cast<int>(k) + 1, wedge);
+        }
+        for (int y = 0; y < region.rows; ++y)
+            for (int x = 0; x < region.cols; ++x)
+                if (region(y, x) && covering(y, x) == 1) owner(y, x) = wedgeOwner(y, x);
+    }
+    // The rest (every pixel with NearestContour; with Wedge, those in no wedge or in several)
+    // goes to the nearest contour piece. The distance transform is the costliest step of the
+    // partition, so it runs only when some pixel is left.
+    cv::Rect left;  // pixels still without a blade
+    int reach = 0;  // bound on their distance to the nearest contour point
+    for (int y = 0; y < region.rows; ++y)
+        for (int x = 0; x < region.cols; ++x)
+            if (region(y, x) && owner(y, x) == 0) {
+                left |= cv::Rect(x, y, 1, 1);
+                // A row or column through the pixel meets the 8-connected outer contour before
+                // it leaves the box, so the nearest contour point is no farther than the
+                // nearest box edge.
+                reach = std::max(reach, std::min({x, y, box.width - 1 - x, box.height - 1 - y}));
+            }
+    if (!left.empty()) {
+        // The transform runs over the part of the box that holds every such nearest point.
+        // Its chamfer metric departs from the Euclidean by a few percent, hence the margin.
+        const int grow = reach + reach / kChamferMarginDivisor + 2;
+        const cv::Rect sub =
+            cv::Rect(left.x - grow, left.y - grow, left.width + 2 * grow, left.height + 2 * grow) &
+            cv::Rect({0, 0}, box.size());
+        cv::Mat1b seeds(sub.size(), std::uint8_t{255});
+        cv::Mat1i seedBlade(sub.size(), 0);
         for (size_t k = 0; k < pieces.size(); ++k)
             for (const auto& p : pieces[k].contour_px) {
-                seeds(p - box.tl()) = 0;
-                seedBlade(p - box.tl()) = static_cast<int>(k) + 1;
+                const cv::Point q = p - box.tl() - sub.tl();
+                if (q.x < 0 || q.y < 0 || q.x >= sub.width || q.y >= sub.height) continue;
+                seeds(q) = 0;
+                seedBlade(q) = static_cast<int>(k) + 1;
             }
         // DIST_LABEL_PIXEL numbers the zero pixels 1, 2, ... in row-major order.
         std::vector<int> bladeOfLabel{0};
@@ -201,43 +252,38 @@ std::vector<BladeContour> partitionCluster(BladeCluster& cluster, const cv::Mat1
         cv::Mat1i labels;
         cv::distanceTransform(seeds, dist, labels, cv::DIST_L2, cv::DIST_MASK_5,
                               cv::DIST_LABEL_PIXEL);
-        for (int y = 0; y < region.rows; ++y)
-            for (int x = 0; x < region.cols; ++x) {
-                const int l = labels(y, x);
-                if (region(y, x) && l > 0 && l < static_cast<int>(bladeOfLabel.size()))
+        for (int y = left.y; y < left.br().y; ++y)
+            for (int x = left.x; x < left.br().x; ++x) {
+                if (!region(y, x) || owner(y, x) != 0) continue;
+                const int l = labels(y - sub.y, x - sub.x);
+                if (l > 0 && l < static_cast<int>(bladeOfLabel.size()))
                     owner(y, x) = bladeOfLabel[static_cast<size_t>(l)];
             }
     }
-    if (params.bladeMask == BladeMaskMethod::Wedge &&
-        params.reference == ReferencePoint::BasePoint && pieces.size() > 1) {
-        const cv::Point base(cvRound(cluster.reference_px.x) - box.x,
-                             cvRound(cluster.reference_px.y) - box.y);
-        cv::Mat1i covering(box.size(), 0), wedgeOwner(box.size(), 0);
-        for (size_t k = 0; k < pieces.size(); ++k) {
-            std::vector<cv::Point> polygon;
-            for (const auto& p : pieces[k].contour_px) polygon.push_back(p - box.tl());
-            polygon.push_back(base);
-            cv::Mat1b wedge(box.size(), std::uint8_t{0});
-            cv::fillPoly(wedge, std::vector<std::vector<cv::Point>>{polygon}, 255);
-            cv::add(covering, 1, covering, wedge);
-            wedgeOwner.setTo(static_cast<int>(k) + 1, wedge);
-        }
-        for (int y = 0; y < region.rows; ++y)
-            for (int x = 0; x < region.cols; ++x)
-                if (region(y, x) && covering(y, x) == 1) owner(y, x) = wedgeOwner(y, x);
-    }
-    std::vector<cv::Mat1b> boxMasks(pieces.size());
-    for (size_t k = 0; k < pieces.size(); ++k) boxMasks[k] = owner == static_cast<int>(k) + 1;
+    // Each blade's mask covers its own bounding box (BladeContour::maskOrigin_px).
+    std::vector<cv::Rect> bladeBox(pieces.size());
+    for (int y = 0; y < owner.rows; ++y)
+        for (int x = 0; x < owner.cols; ++x)
+            if (const int k = owner(y, x); k > 0)
+                bladeBox[static_cast<size_t>(k - 1)] |= {x, y, 1, 1};
+    std::vector<cv::Mat1b> ownMasks(pieces.size());
+    for (size_t k = 0; k < pieces.size(); ++k) ownMasks[k] = cv::Mat1b::zeros(bladeBox[k].size());
+    for (int y = 0; y < owner.rows; ++y)
+        for (int x = 0; x < owner.cols; ++x)
+            if (const int k = owner(y, x); k > 0) {
+                const cv::Rect& b = bladeBox[static_cast<size_t>(k - 1)];
+                ownMasks[static_cast<size_t>(k - 1)](y - b.y, x - b.x) = 255;
+            }
     std::vector<BladeContour> blades;
     int empty = 0;
     for (size_t k = 0; k < pieces.size(); ++k) {
-        if (cv::countNonZero(boxMasks[k]) == 0) {
+        if (bladeBox[k].empty()) {
             ++empty;
             continue;
         }
         BladeContour blade = std::move(pieces[k]);
-        blade.mask = cv::Mat1b::zeros(mask.size());
-        boxMasks[k].copyTo(blade.mask(box));
+        blade.mask = ownMasks[k];
+        blade.maskOrigin_px = box.tl() + bladeBox[k].tl();
         blade.id = firstId + static_cast<int>(blades.size());
         blades.push_back(std::move(blade));
     }

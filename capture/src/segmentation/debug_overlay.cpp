@@ -44,11 +44,11 @@ cv::Mat3b renderDebugOverlay(const DepthFrame& frame, const Segmentation& s) {
     if (!s.clusterMask.empty() && s.clusterMask.size() == out.size())
         out.setTo(cv::Scalar(90, 60, 60), s.clusterMask);  // mask not given to any blade: slate
     for (const auto& b : s.blades) {
-        if (b.mask.size() != out.size()) continue;
+        const cv::Rect box = b.maskBox_px() & cv::Rect(0, 0, out.cols, out.rows);
         const cv::Vec3b c = bladeColour(b.id);
-        for (int y = 0; y < out.rows; ++y)
-            for (int x = 0; x < out.cols; ++x)
-                if (b.mask(y, x))
+        for (int y = box.y; y < box.br().y; ++y)
+            for (int x = box.x; x < box.br().x; ++x)
+                if (b.mask(y - b.maskOrigin_px.y, x - b.maskOrigin_px.x))
                     for (int ch = 0; ch < 3; ++ch)
                         out(y, x)[ch] = cv::saturate_cast<uchar>(kBladeAlpha * c[ch] +
                                                                  (1 - kBladeAlpha) * out(y, x)[ch]);

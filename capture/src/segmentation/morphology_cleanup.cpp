@@ -2,11 +2,25 @@
 // blades, a Gaussian smooths the ragged boundary that lateral sensor noise leaves, small regions
 // are speckle, small enclosed holes are missing readings. Larger holes are kept: a loop enclosed
 // by blades means blades cross (flagged in contour_extraction.cpp).
+#include <cmath>
 #include <opencv2/imgproc.hpp>
 
 #include "segmentation/stages.h"
 
 namespace meadow::capture::segmentation {
+
+cv::Rect cleanUpRegion(const cv::Mat1b& mask, const SegmenterParams& params) {
+    const cv::Rect box = cv::boundingRect(mask);
+    if (box.empty()) return box;
+    // Closing and opening reach their kernel's radius each way; the Gaussian of an 8-bit image
+    // reaches 3 sigma (OpenCV's kernel size for CV_8U); the thin-part test's 3x3 opening and
+    // dilation reach 2 px; one more pixel keeps a background ring around everything.
+    const int reach_px = params.closeKernel_px / 2 + params.openKernel_px / 2 +
+                         static_cast<int>(std::ceil(3.f * params.edgeSmoothingSigma_px)) + 2 + 1;
+    const cv::Rect grown(box.x - reach_px, box.y - reach_px, box.width + 2 * reach_px,
+                         box.height + 2 * reach_px);
+    return grown & cv::Rect(0, 0, mask.cols, mask.rows);
+}
 
 void cleanUpMask(const SegmenterParams& params, cv::Mat1b& mask, StageReport& report) {
     if (params.closeKernel_px > 1) {

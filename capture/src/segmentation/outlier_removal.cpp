@@ -10,6 +10,7 @@
 #include <pcl/point_types.h>
 
 #include <opencv2/core.hpp>
+#include <opencv2/imgproc.hpp>
 
 #include "segmentation/stages.h"
 
@@ -21,25 +22,36 @@ int organizedNeighbourhood(const cv::Mat1w& depth_mm, const SegmenterParams& par
                            cv::Mat1b& mask) {
     const int r = params.outlierWindow_px / 2;
     const int tol_mm = static_cast<int>(params.outlierDepthTolerance_m * kMillimetresPerMetre);
-    const cv::Mat1b in = mask.clone();
+    const int needed = params.outlierMinNeighbours + 1;  // +1: the pixel counts itself
+    // Only the masked part of the frame can change; the window reads r px around it.
+    const cv::Rect box = cv::boundingRect(mask);
+    if (box.empty()) return 0;
+    const cv::Rect frame(0, 0, mask.cols, mask.rows);
+    const cv::Rect window =
+        cv::Rect(box.x - r, box.y - r, box.width + 2 * r, box.height + 2 * r) & frame;
+    const cv::Mat1b in = mask(window).clone();
+    const cv::Mat1w depth = depth_mm(window);
     int dropped = 0;
     for (int y = 0; y < in.rows; ++y) {
         const auto* m = in[y];
         for (int x = 0; x < in.cols; ++x) {
             if (m[x] == 0) continue;
-            const int d0 = depth_mm(y, x);
+            const int d0 = depth(y, x);
             if (d0 == 0) {  // masked without a reading (segmentMask input): nothing to test
                 continue;
             }
+            // Counting stops once the pixel has enough support: most pixels of a blade have it
+            // within the first rows of the window.
             int near = 0;
-            for (int yy = std::max(0, y - r); yy <= std::min(in.rows - 1, y + r); ++yy) {
+            for (int yy = std::max(0, y - r); yy <= std::min(in.rows - 1, y + r) && near < needed;
+                 ++yy) {
                 const auto* mm = in[yy];
-                const auto* dd = depth_mm[yy];
+                const auto* dd = depth[yy];
                 for (int xx = std::max(0, x - r); xx <= std::min(in.cols - 1, x + r); ++xx)
-                    if (mm[xx] != 0 && std::abs(static_cast<int>(dd[xx]) - d0) <= tol_mm) ++near;
+                    near += mm[xx] != 0 && std::abs(static_cast<int>(dd[xx]) - d0) <= tol_mm;
             }
-            if (near - 1 < params.outlierMinNeighbours) {  // -1: the pixel itself
-                mask(y, x) = 0;
+            if (near < needed) {
+                mask(y + window.y, x + window.x) = 0;
                 ++dropped;
             }
         }

@@ -227,10 +227,19 @@ struct Segmenter::Impl {
     }
 
     Segmentation fromMask(cv::Mat1b mask, Segmentation out) const {
-        stage(out, "clean-up", &mask, [&](StageReport& r) { seg::cleanUpMask(params, mask, r); });
+        // Clean-up and contours work inside the region the mask can reach, not the whole frame:
+        // a tuft covers a small part of it, and the results are the same (cleanUpRegion).
+        const cv::Rect region = seg::cleanUpRegion(mask, params);
+        cv::Mat1b local = region.empty() ? cv::Mat1b() : cv::Mat1b(mask(region).clone());
+        stage(out, "clean-up", &local, [&](StageReport& r) {
+            if (!local.empty()) seg::cleanUpMask(params, local, r);
+        });
+        mask.setTo(0);
+        if (!local.empty()) local.copyTo(mask(region));
         out.clusterMask = mask;
-        stage(out, "contours", &mask,
-              [&](StageReport& r) { out.clusters = seg::extractClusters(mask, params, r); });
+        stage(out, "contours", &local, [&](StageReport& r) {
+            out.clusters = seg::extractClusters(mask, region, params, r);
+        });
         stage(out, "partition", nullptr, [&](StageReport& r) {
             for (auto& cluster : out.clusters) {
                 auto blades = seg::partitionCluster(cluster, mask, params,

@@ -47,11 +47,17 @@ void removeOutliers(const cv::Mat1w& depth_mm, const Intrinsics& intrinsics,
 
 // morphology_cleanup.cpp: closing, optional opening, small regions dropped, small holes filled.
 void cleanUpMask(const SegmenterParams& params, cv::Mat1b& mask, StageReport& report);
+// The part of the frame the clean-up and everything after it can touch: the mask's bounding
+// box grown by the farthest any clean-up filter reaches, and one pixel more so that a hole
+// touches the region's border only if it is open to the frame's background. Clean-up inside it
+// gives the same pixels as over the whole frame. Empty for an empty mask.
+cv::Rect cleanUpRegion(const cv::Mat1b& mask, const SegmenterParams& params);
 
 // contour_extraction.cpp: one cluster per remaining region, with contour, centre, base point
 // and reference; flags holes (crossing blades) and hidden bases.
-std::vector<BladeCluster> extractClusters(const cv::Mat1b& mask, const SegmenterParams& params,
-                                          StageReport& report);
+// Only `region` of the frame-sized mask is searched (cleanUpRegion: nothing lies outside it).
+std::vector<BladeCluster> extractClusters(const cv::Mat1b& mask, const cv::Rect& region,
+                                          const SegmenterParams& params, StageReport& report);
 
 // blade_partition.cpp: persistent minima of the smoothed distance cut each cluster's contour
 // into blades ordered base A -> tip -> base B, each with its mask.

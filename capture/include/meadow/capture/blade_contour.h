@@ -25,9 +25,20 @@ struct BladeContour {
     int id = 0;                         // 1.. within its frame
     std::vector<cv::Point> contour_px;  // base side A -> tip -> base side B, closed implicitly
     int tipIndex = 0;                   // index of the tip point in contour_px
-    cv::Mat1b mask;                     // the blade's pixels (frame-sized)
+    // The blade's pixels (255), over the blade's bounding box only: a frame holds a dozen
+    // blades, and frame-sized masks cost more to fill and to scan than the segmentation itself.
+    // mask(y, x) is frame pixel maskOrigin_px + (x, y). A frame-sized mask has origin (0, 0).
+    cv::Mat1b mask;
+    cv::Point maskOrigin_px{0, 0};
     std::vector<BladeFlag> flags;
     std::vector<std::string> reasons;  // one human-readable line per flag
+
+    // Whether frame pixel p_px belongs to the blade.
+    [[nodiscard]] bool covers(cv::Point p_px) const;
+    // The mask placed in a frame of frameSize (0 elsewhere), to compare with frame-sized images.
+    [[nodiscard]] cv::Mat1b frameMask(cv::Size frameSize) const;
+    // The part of the frame the mask covers.
+    [[nodiscard]] cv::Rect maskBox_px() const { return {maskOrigin_px, mask.size()}; }
 };
 
 }  // namespace meadow::capture

@@ -97,10 +97,12 @@ struct BladeFit {
     Skeleton skeleton;
 };
 
-// Fits an archetype to a skeleton already lifted to 3D. `mask` may be empty (no DT width check).
+// Fits an archetype to a skeleton already lifted to 3D. `mask` may be empty (no DT width check);
+// its pixel (0, 0) is frame pixel maskOrigin_px (capture::BladeContour::maskOrigin_px).
 BladeFit fitArchetype(const Skeleton& skeleton, const BladeFitParams& params = {},
                       const Source& source = {}, const cv::Mat1b& mask = {},
-                      const capture::Intrinsics* intrinsics = nullptr);
+                      const capture::Intrinsics* intrinsics = nullptr,
+                      cv::Point maskOrigin_px = {0, 0});
 // Contour + depth to archetype: extractSkeleton then fitArchetype. Throws ModelingError when the
 // blade cannot be fitted (no depth, degenerate skeleton).
 BladeFit fitBlade(const capture::BladeContour& blade, const capture::DepthFrame& frame,

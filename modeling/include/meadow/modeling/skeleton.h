@@ -80,8 +80,11 @@ Skeleton extractSkeleton(const capture::BladeContour& blade, const capture::Dept
 // Independent width check (width_check.cpp): twice the Euclidean distance transform (DT) of the
 // blade mask, sampled bilinearly at each midline point, in pixels; comparable with
 // Skeleton::width_px (boundary distance + 1 pixel) within about half a pixel (see the file).
+// The mask's pixel (0, 0) is frame pixel maskOrigin_px (capture::BladeContour::maskOrigin_px);
+// midline points are in frame pixels.
 std::vector<float> distanceTransformWidth_px(const cv::Mat1b& mask,
-                                             const std::vector<glm::vec2>& midline_px);
+                                             const std::vector<glm::vec2>& midline_px,
+                                             cv::Point maskOrigin_px = {0, 0});
 
 // Smoothing of a width sequence: 3-tap median, then `passes` of [1 2 1] / 4; ends kept in place.
 std::vector<float> smoothWidths(const std::vector<float>& width, int passes);
