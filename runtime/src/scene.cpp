@@ -274,13 +274,25 @@ SceneDescription parseSceneDescription(const std::string& jsonText, const fs::pa
     scene.light.skyColor = r.vec3(l, "sky_color", "light", scene.light.skyColor);
 
     const json& w = root.value("wind", empty);
-    r.onlyKeys(w, "wind", {"direction", "strength_m_s2", "frequency_hz"});
-    scene.wind.direction =
-        normalised(r, r.vec3(w, "direction", "wind", scene.wind.direction), "wind.direction");
-    scene.wind.strength_m_s2 =
-        r.number(w, "strength_m_s2", "wind", scene.wind.strength_m_s2, 0.f, 1000.f);
-    scene.wind.frequency_hz =
-        r.number(w, "frequency_hz", "wind", scene.wind.frequency_hz, 0.f, 100.f);
+    // The field was named as an acceleration but always fed the wave amplitude (m/s).
+    if (w.contains("strength_m_s2"))
+        r.fail("wind.strength_m_s2",
+               "renamed to wave_amplitude_m_s (the wind pushes the tip with a velocity, m/s); "
+               "rename the field, its value keeps its meaning");
+    r.onlyKeys(w, "wind",
+               {"direction", "wave_amplitude_m_s", "wavelength_m", "frequency_hz", "source_m",
+                "source_amplitude_m_s", "source_radius_m"});
+    WindDescription& wind = scene.wind;
+    wind.direction =
+        normalised(r, r.vec3(w, "direction", "wind", wind.direction), "wind.direction");
+    wind.waveAmplitude_m_s =
+        r.number(w, "wave_amplitude_m_s", "wind", wind.waveAmplitude_m_s, 0.f, 1000.f);
+    wind.wavelength_m = r.number(w, "wavelength_m", "wind", wind.wavelength_m, 1e-3f, 1e6f);
+    wind.frequency_hz = r.number(w, "frequency_hz", "wind", wind.frequency_hz, 0.f, 100.f);
+    wind.source_m = r.vec3(w, "source_m", "wind", wind.source_m);
+    wind.sourceAmplitude_m_s =
+        r.number(w, "source_amplitude_m_s", "wind", wind.sourceAmplitude_m_s, 0.f, 1000.f);
+    wind.sourceRadius_m = r.number(w, "source_radius_m", "wind", wind.sourceRadius_m, 1e-3f, 1e6f);
 
     if (root.contains("colliders")) {
         if (!root.at("colliders").is_array()) r.fail("colliders", "expected an array of spheres");
@@ -295,12 +307,22 @@ SceneDescription parseSceneDescription(const std::string& jsonText, const fs::pa
     }
 
     const json& p = root.value("physics", empty);
-    r.onlyKeys(p, "physics", {"enabled", "gravity_m_s2", "collision_decay_per_s"});
-    scene.physics.enabled = r.boolean(p, "enabled", "physics", scene.physics.enabled);
-    scene.physics.gravity_m_s2 =
-        r.number(p, "gravity_m_s2", "physics", scene.physics.gravity_m_s2, 0.f, 1000.f);
-    scene.physics.collisionDecay_per_s = r.number(p, "collision_decay_per_s", "physics",
-                                                  scene.physics.collisionDecay_per_s, 0.f, 1000.f);
+    r.onlyKeys(p, "physics",
+               {"enabled", "gravity_direction", "gravity_m_s2", "gravity_center_m",
+                "gravity_center_m_s2", "gravity_center_mix", "collision_decay_per_s"});
+    PhysicsDescription& ph = scene.physics;
+    ph.enabled = r.boolean(p, "enabled", "physics", ph.enabled);
+    ph.gravityDirection =
+        normalised(r, r.vec3(p, "gravity_direction", "physics", ph.gravityDirection),
+                   "physics.gravity_direction");
+    ph.gravity_m_s2 = r.number(p, "gravity_m_s2", "physics", ph.gravity_m_s2, 0.f, 1000.f);
+    ph.gravityCenter_m = r.vec3(p, "gravity_center_m", "physics", ph.gravityCenter_m);
+    ph.gravityCenter_m_s2 =
+        r.number(p, "gravity_center_m_s2", "physics", ph.gravityCenter_m_s2, 0.f, 1000.f);
+    ph.gravityCenterMix =
+        r.number(p, "gravity_center_mix", "physics", ph.gravityCenterMix, 0.f, 1.f);
+    ph.collisionDecay_per_s =
+        r.number(p, "collision_decay_per_s", "physics", ph.collisionDecay_per_s, 0.f, 1000.f);
 
     const json& k = root.value("culling", empty);
     r.onlyKeys(k, "culling",
