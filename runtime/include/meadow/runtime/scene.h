@@ -24,11 +24,17 @@ struct SceneMesh {
     glm::vec3 albedo{0.25f, 0.2f, 0.12f};  // linear colour of the opaque surface
 };
 
-struct DensityMap {
-    std::filesystem::path image;  // 8/16-bit grey image; white keeps every blade, black none
-    glm::vec2 minXZ_m{0.f};       // world XZ of the image's first column / row
-    glm::vec2 maxXZ_m{1.f};       // world XZ of its last column / row
+// An image laid over the world's XZ plane, looked up at a blade's root (nearest texel, clamped
+// at the border; runtime/src/ground_maps.h).
+struct GroundImage {
+    std::filesystem::path image;
+    glm::vec2 minXZ_m{0.f};  // world XZ of the image's first column / row
+    glm::vec2 maxXZ_m{1.f};  // world XZ of its last column / row
 };
+// 8/16-bit grey image; white keeps every blade, black none.
+using DensityMap = GroundImage;
+// 8-bit grey image; value k plants archetype k (in the library's order), 255 picks by weight.
+using ArchetypeMap = GroundImage;
 
 struct BladeSeeding {
     float density_per_m2 = 300.f;  // blades per square metre of surface (before the density map)
@@ -129,7 +135,8 @@ struct SceneDescription {
     std::vector<SceneMesh> grassMeshes;
     std::vector<SceneMesh> props;
     std::vector<modeling::Archetype> archetypes;
-    std::vector<float> archetypeWeights;  // one per archetype, > 0
+    std::vector<float> archetypeWeights;       // one per archetype, > 0
+    std::optional<ArchetypeMap> archetypeMap;  // checked on load (ground_maps.h)
     BladeSeeding blades;
     CameraDescription camera;
     LightDescription light;
