@@ -190,6 +190,7 @@ std::vector<SeededBlade> seedBlades(const SeedingInput& in) {
         b.mesh = s.mesh;
         b.triangle = s.triangle;
         b.inTuft = tuft;
+        if (tuft) b.tuftCenter_m = s.position_m;  // s is the tuft's centre for tuft blades
         return b;
     };
     auto addSingle = [&] {

@@ -27,6 +27,7 @@ struct SeededBlade {
     std::uint32_t mesh = 0;  // which grass mesh and triangle it grows on
     std::uint32_t triangle = 0;
     bool inTuft = false;
+    glm::vec3 tuftCenter_m{0.f};  // the Poisson-disk centre of its tuft (inTuft only)
 };
 
 struct SeedingInput {
