@@ -11,11 +11,21 @@ namespace meadow::runtime {
 
 PhysicsSettings physicsSettingsOf(const SceneDescription& scene, const gpu::FrameGpu& frame) {
     PhysicsSettings s;
-    s.gravity_mps2 = scene.physics.gravity_m_s2;
-    s.etaDecay_per_s = scene.physics.collisionDecay_per_s;
+    const PhysicsDescription& p = scene.physics;
+    s.gravityDirection = p.gravityDirection;
+    s.gravity_mps2 = p.gravity_m_s2;
+    s.gravityCenter_m = p.gravityCenter_m;
+    s.gravityCenter_mps2 = p.gravityCenter_m_s2;
+    s.gravityCenterMix = p.gravityCenterMix;
+    s.etaDecay_per_s = p.collisionDecay_per_s;
+    // Direction and wave amplitude come through the frame, where the renderer may vary them.
     s.windDirection = glm::vec3(frame.wind);
     s.windWave_mps = frame.wind.w;
+    s.windWavelength_m = scene.wind.wavelength_m;
     if (scene.wind.frequency_hz > 0.f) s.windPeriod_s = 1.f / scene.wind.frequency_hz;
+    s.windSource_m = scene.wind.source_m;
+    s.windSource_mps = scene.wind.sourceAmplitude_m_s;
+    s.windSourceRadius_m = scene.wind.sourceRadius_m;
     return s;
 }
 

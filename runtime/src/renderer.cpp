@@ -100,7 +100,7 @@ RenderedFrame Renderer::renderFrame(int frameIndex) {
     frame.lightDirection = glm::vec4(scene.light.direction, scene.light.intensity);
     frame.viewport_px =
         glm::vec4(im.draw.width_px(), im.draw.height_px(), scene.camera.near_m, scene.camera.far_m);
-    frame.wind = glm::vec4(scene.wind.direction, scene.wind.strength_m_s2);
+    frame.wind = glm::vec4(scene.wind.direction, scene.wind.waveAmplitude_m_s);
     glNamedBufferSubData(im.gpu.frame.id(), 0, sizeof frame, &frame);
     // World size of one pixel at 1 m: the image height spans 2 tan(fov / 2) at unit distance.
     const float pixelSize_perM =

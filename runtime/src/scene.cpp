@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "default_archetypes.h"
+#include "ground_maps.h"
 #include "meadow/modeling/archetype_library.h"
 #include "meadow/runtime/error.h"
 
@@ -116,6 +117,26 @@ glm::vec3 normalised(const Reader& r, glm::vec3 v, const std::string& where) {
     return v / n;
 }
 
+// `{ "image": PNG, "min_xz_m": [x, z], "max_xz_m": [x, z] }`, the form of every ground map.
+GroundImage readGroundImage(const Reader& r, const json& d, const std::string& where) {
+    r.onlyKeys(d, where, {"image", "min_xz_m", "max_xz_m"});
+    GroundImage map;
+    map.image = r.path(d, "image", where);
+    auto xz = [&](const char* key) {
+        const json* v = d.contains(key) ? &d.at(key) : nullptr;
+        if (!v || !v->is_array() || v->size() != 2 || !(*v)[0].is_number() ||
+            !(*v)[1].is_number() || !std::isfinite((*v)[0].get<double>()) ||
+            !std::isfinite((*v)[1].get<double>()))
+            r.fail(where + "." + key, "expected [x, z] in metres");
+        return glm::vec2((*v)[0].get<float>(), (*v)[1].get<float>());
+    };
+    map.minXZ_m = xz("min_xz_m");
+    map.maxXZ_m = xz("max_xz_m");
+    if (!(map.maxXZ_m.x > map.minXZ_m.x && map.maxXZ_m.y > map.minXZ_m.y))
+        r.fail(where, "max_xz_m must be greater than min_xz_m in x and z");
+    return map;
+}
+
 std::vector<SceneMesh> readMeshes(const Reader& r, const json& root, const std::string& key,
                                   glm::vec3 defaultAlbedo) {
     std::vector<SceneMesh> meshes;
@@ -136,7 +157,7 @@ void readArchetypes(const Reader& r, const json& root, SceneDescription& scene) 
         scene.archetypes = defaultArchetypes();
     } else {
         const json& a = root.at("archetypes");
-        r.onlyKeys(a, "archetypes", {"library", "weights"});
+        r.onlyKeys(a, "archetypes", {"library", "weights", "map"});
         if (a.contains("library") && a.at("library") == "default") {
             scene.archetypes = defaultArchetypes();
         } else {
@@ -166,6 +187,15 @@ void readArchetypes(const Reader& r, const json& root, SceneDescription& scene) 
         if (!(arch.height_m() > 0.f) || arch.width.width_m.size() < 2 ||
             !(arch.width.maxWidth_m() > 0.f))
             r.fail("archetypes", "archetype '" + arch.name + "' has no height or no width");
+    // The map is read here as well as when the blades are seeded, so a bad map fails on load,
+    // before any GL context exists, with the scene file and the field in the message.
+    if (root.contains("archetypes") && root.at("archetypes").contains("map")) {
+        const ArchetypeMap map =
+            readGroundImage(r, root.at("archetypes").at("map"), "archetypes.map");
+        const ArchetypeMapImage image = readArchetypeMap(map, scene.archetypes.size());
+        if (!image.problem.empty()) r.fail("archetypes.map.image", image.problem);
+        scene.archetypeMap = map;
+    }
 }
 
 }  // namespace
@@ -216,22 +246,8 @@ SceneDescription parseSceneDescription(const std::string& jsonText, const fs::pa
     s.stiffness = r.range(b, "stiffness", "blades", s.stiffness, 0.f, 100.f);
     s.seed = static_cast<std::uint32_t>(
         r.integer(b, "seed", "blades", static_cast<int>(s.seed), 0, 2147483647));
-    if (b.contains("density_map")) {
-        const json& d = b.at("density_map");
-        r.onlyKeys(d, "blades.density_map", {"image", "min_xz_m", "max_xz_m"});
-        DensityMap map;
-        map.image = r.path(d, "image", "blades.density_map");
-        auto xz = [&](const char* key) {
-            if (!d.contains(key) || !d.at(key).is_array() || d.at(key).size() != 2)
-                r.fail(std::string("blades.density_map.") + key, "expected [x, z] in metres");
-            return glm::vec2(d.at(key)[0].get<float>(), d.at(key)[1].get<float>());
-        };
-        map.minXZ_m = xz("min_xz_m");
-        map.maxXZ_m = xz("max_xz_m");
-        if (!(map.maxXZ_m.x > map.minXZ_m.x && map.maxXZ_m.y > map.minXZ_m.y))
-            r.fail("blades.density_map", "max_xz_m must be greater than min_xz_m in x and z");
-        s.densityMap = map;
-    }
+    if (b.contains("density_map"))
+        s.densityMap = readGroundImage(r, b.at("density_map"), "blades.density_map");
 
     const json& c = root.value("camera", empty);
     r.onlyKeys(c, "camera",
@@ -274,13 +290,25 @@ SceneDescription parseSceneDescription(const std::string& jsonText, const fs::pa
     scene.light.skyColor = r.vec3(l, "sky_color", "light", scene.light.skyColor);
 
     const json& w = root.value("wind", empty);
-    r.onlyKeys(w, "wind", {"direction", "strength_m_s2", "frequency_hz"});
-    scene.wind.direction =
-        normalised(r, r.vec3(w, "direction", "wind", scene.wind.direction), "wind.direction");
-    scene.wind.strength_m_s2 =
-        r.number(w, "strength_m_s2", "wind", scene.wind.strength_m_s2, 0.f, 1000.f);
-    scene.wind.frequency_hz =
-        r.number(w, "frequency_hz", "wind", scene.wind.frequency_hz, 0.f, 100.f);
+    // The field was named as an acceleration but always fed the wave amplitude (m/s).
+    if (w.contains("strength_m_s2"))
+        r.fail("wind.strength_m_s2",
+               "renamed to wave_amplitude_m_s (the wind pushes the tip with a velocity, m/s); "
+               "rename the field, its value keeps its meaning");
+    r.onlyKeys(w, "wind",
+               {"direction", "wave_amplitude_m_s", "wavelength_m", "frequency_hz", "source_m",
+                "source_amplitude_m_s", "source_radius_m"});
+    WindDescription& wind = scene.wind;
+    wind.direction =
+        normalised(r, r.vec3(w, "direction", "wind", wind.direction), "wind.direction");
+    wind.waveAmplitude_m_s =
+        r.number(w, "wave_amplitude_m_s", "wind", wind.waveAmplitude_m_s, 0.f, 1000.f);
+    wind.wavelength_m = r.number(w, "wavelength_m", "wind", wind.wavelength_m, 1e-3f, 1e6f);
+    wind.frequency_hz = r.number(w, "frequency_hz", "wind", wind.frequency_hz, 0.f, 100.f);
+    wind.source_m = r.vec3(w, "source_m", "wind", wind.source_m);
+    wind.sourceAmplitude_m_s =
+        r.number(w, "source_amplitude_m_s", "wind", wind.sourceAmplitude_m_s, 0.f, 1000.f);
+    wind.sourceRadius_m = r.number(w, "source_radius_m", "wind", wind.sourceRadius_m, 1e-3f, 1e6f);
 
     if (root.contains("colliders")) {
         if (!root.at("colliders").is_array()) r.fail("colliders", "expected an array of spheres");
@@ -295,12 +323,22 @@ SceneDescription parseSceneDescription(const std::string& jsonText, const fs::pa
     }
 
     const json& p = root.value("physics", empty);
-    r.onlyKeys(p, "physics", {"enabled", "gravity_m_s2", "collision_decay_per_s"});
-    scene.physics.enabled = r.boolean(p, "enabled", "physics", scene.physics.enabled);
-    scene.physics.gravity_m_s2 =
-        r.number(p, "gravity_m_s2", "physics", scene.physics.gravity_m_s2, 0.f, 1000.f);
-    scene.physics.collisionDecay_per_s = r.number(p, "collision_decay_per_s", "physics",
-                                                  scene.physics.collisionDecay_per_s, 0.f, 1000.f);
+    r.onlyKeys(p, "physics",
+               {"enabled", "gravity_direction", "gravity_m_s2", "gravity_center_m",
+                "gravity_center_m_s2", "gravity_center_mix", "collision_decay_per_s"});
+    PhysicsDescription& ph = scene.physics;
+    ph.enabled = r.boolean(p, "enabled", "physics", ph.enabled);
+    ph.gravityDirection =
+        normalised(r, r.vec3(p, "gravity_direction", "physics", ph.gravityDirection),
+                   "physics.gravity_direction");
+    ph.gravity_m_s2 = r.number(p, "gravity_m_s2", "physics", ph.gravity_m_s2, 0.f, 1000.f);
+    ph.gravityCenter_m = r.vec3(p, "gravity_center_m", "physics", ph.gravityCenter_m);
+    ph.gravityCenter_m_s2 =
+        r.number(p, "gravity_center_m_s2", "physics", ph.gravityCenter_m_s2, 0.f, 1000.f);
+    ph.gravityCenterMix =
+        r.number(p, "gravity_center_mix", "physics", ph.gravityCenterMix, 0.f, 1.f);
+    ph.collisionDecay_per_s =
+        r.number(p, "collision_decay_per_s", "physics", ph.collisionDecay_per_s, 0.f, 1000.f);
 
     const json& k = root.value("culling", empty);
     r.onlyKeys(k, "culling",

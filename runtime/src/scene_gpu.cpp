@@ -1,8 +1,8 @@
 #include "scene_gpu.h"
 
 #include <numeric>
-#include <opencv2/imgcodecs.hpp>
 
+#include "ground_maps.h"
 #include "meadow/runtime/error.h"
 #include "patches.h"
 
@@ -42,17 +42,6 @@ GpuMesh uploadMesh(const TriangleMesh& mesh, glm::vec3 albedo) {
     return g;
 }
 
-cv::Mat loadDensityMap(const DensityMap& map) {
-    const cv::Mat image =
-        cv::imread(map.image.string(), cv::IMREAD_GRAYSCALE | cv::IMREAD_ANYDEPTH);
-    if (image.empty())
-        throw RuntimeError("meadow::runtime::loadScene: density map " + map.image.string() +
-                           " is not a readable image; give an 8- or 16-bit grey PNG");
-    cv::Mat density;
-    image.convertTo(density, CV_32F, image.depth() == CV_16U ? 1.0 / 65535.0 : 1.0 / 255.0);
-    return density;
-}
-
 }  // namespace
 
 std::size_t patchSizeOf(const SceneDescription& scene) {
@@ -73,6 +62,10 @@ SceneBlades buildSceneBlades(const SceneDescription& scene) {
     input.archetypes = &scene.archetypes;
     input.archetypeWeights = &scene.archetypeWeights;
     if (scene.blades.densityMap) input.densityMap = loadDensityMap(*scene.blades.densityMap);
+    if (scene.archetypeMap) {
+        input.archetypeMap = loadArchetypeMap(*scene.archetypeMap, scene.archetypes.size());
+        input.archetypeMapExtent = *scene.archetypeMap;
+    }
     input.countMultiple = out.patchSize;
     std::vector<SeededBlade> seeds = seedBlades(input);
 

@@ -29,7 +29,7 @@ struct SceneBlades {
 
 // The patch size of the scene rounded up to whole workgroups.
 std::size_t patchSizeOf(const SceneDescription& scene);
-// Loads the meshes and density map, seeds, orders into patches. Throws RuntimeError.
+// Loads the meshes, density and archetype maps, seeds, orders into patches. Throws RuntimeError.
 SceneBlades buildSceneBlades(const SceneDescription& scene);
 
 struct GpuMesh {

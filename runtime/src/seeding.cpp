@@ -7,6 +7,7 @@
 #include <random>
 #include <unordered_map>
 
+#include "ground_maps.h"
 #include "meadow/runtime/error.h"
 
 namespace meadow::runtime {
@@ -126,16 +127,11 @@ std::uint32_t pickArchetype(const std::vector<float>& cumulativeWeights, Random&
         std::min<std::size_t>(it - cumulativeWeights.begin(), cumulativeWeights.size() - 1));
 }
 
-// Density map value at a world point (bilinear-free nearest lookup: the map is a mask, and a
-// blade's threshold already dithers its edges).
+// Density map value at a world point (nearest lookup: the map is a mask, and a blade's threshold
+// already dithers its edges).
 float densityAt(const cv::Mat& map, const DensityMap& extent, glm::vec3 p) {
-    const float fx = (p.x - extent.minXZ_m.x) / (extent.maxXZ_m.x - extent.minXZ_m.x);
-    const float fz = (p.z - extent.minXZ_m.y) / (extent.maxXZ_m.y - extent.minXZ_m.y);
-    const int col =
-        std::clamp(static_cast<int>(fx * static_cast<float>(map.cols - 1) + 0.5f), 0, map.cols - 1);
-    const int row =
-        std::clamp(static_cast<int>(fz * static_cast<float>(map.rows - 1) + 0.5f), 0, map.rows - 1);
-    return map.at<float>(row, col);
+    const cv::Point texel = texelAt(extent, map.size(), p);
+    return map.at<float>(texel.y, texel.x);
 }
 
 }  // namespace
@@ -180,13 +176,21 @@ std::vector<SeededBlade> seedBlades(const SeedingInput& in) {
         b.root_m = root;
         b.up = s.normal;
         b.directionAngle_rad = angle;
+        // Drawn even under an archetype map, so that a map changes which archetype grows where
+        // and nothing else (positions, sizes and directions stay those of the same seed).
         b.archetype = pickArchetype(cumulativeWeights, random);
+        if (!in.archetypeMap.empty()) {
+            const cv::Point texel = texelAt(in.archetypeMapExtent, in.archetypeMap.size(), root);
+            const std::uint8_t k = in.archetypeMap.at<std::uint8_t>(texel.y, texel.x);
+            if (k != kArchetypeByWeights) b.archetype = k;
+        }
         b.heightScale = random.uniform(p.heightScale);
         b.widthScale = random.uniform(p.widthScale);
         b.stiffness = random.uniform(p.stiffness);
         b.mesh = s.mesh;
         b.triangle = s.triangle;
         b.inTuft = tuft;
+        if (tuft) b.tuftCenter_m = s.position_m;  // s is the tuft's centre for tuft blades
         return b;
     };
     auto addSingle = [&] {

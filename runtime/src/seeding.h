@@ -1,7 +1,8 @@
 #pragma once
 // Planting blades on triangle meshes (Jahrmann & Wimmer 2017, Sec. 4): area-weighted positions,
 // tufts by Poisson-disk sampling on the surface, single blades at random, an optional density
-// map with per-blade thresholds (Boulanger et al.), archetype by weight, random direction,
+// map with per-blade thresholds (Boulanger et al.), archetype by weight or by an archetype map
+// (value k at the root: archetype k), random direction,
 // height and width scale; the initial pose is the archetype's rest shape on the surface.
 #include <cstdint>
 #include <glm/vec3.hpp>
@@ -26,6 +27,7 @@ struct SeededBlade {
     std::uint32_t mesh = 0;  // which grass mesh and triangle it grows on
     std::uint32_t triangle = 0;
     bool inTuft = false;
+    glm::vec3 tuftCenter_m{0.f};  // the Poisson-disk centre of its tuft (inTuft only)
 };
 
 struct SeedingInput {
@@ -33,8 +35,10 @@ struct SeedingInput {
     const BladeSeeding* params = nullptr;
     const std::vector<modeling::Archetype>* archetypes = nullptr;
     const std::vector<float>* archetypeWeights = nullptr;
-    cv::Mat densityMap;             // CV_32F in [0, 1], rows along z, cols along x; empty = none
-    std::size_t countMultiple = 1;  // the blade count is made a multiple of this
+    cv::Mat densityMap;               // CV_32F in [0, 1], rows along z, cols along x; empty = none
+    cv::Mat archetypeMap;             // CV_8U archetype indices (loadArchetypeMap); empty = weights
+    ArchetypeMap archetypeMapExtent;  // where archetypeMap lies in world XZ
+    std::size_t countMultiple = 1;    // the blade count is made a multiple of this
 };
 
 // Deterministic for a given input (the seed is in params). Throws RuntimeError when the meshes

@@ -102,7 +102,7 @@ struct FrameGpu {
     vec4 cameraPosition_time;  // xyz camera position (world, m), w time (s)
     vec4 lightDirection;       // xyz unit direction toward the light (world), w intensity
     vec4 viewport_px;          // xy framebuffer size (px), z near (m), w far (m)
-    vec4 wind;                 // xyz wind direction (unit, world), w strength (m/s^2)
+    vec4 wind;                 // xyz wind direction (unit, world), w wave amplitude (m/s)
 };
 
 #ifdef __cplusplus

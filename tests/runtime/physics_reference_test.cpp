@@ -158,6 +158,39 @@ TEST(PhysicsReference, WindBlowingAlongTheBladeMovesNothing) {
     EXPECT_LT(glm::distance(glm::vec3(m.blades[0].v2_stiffness), v0 + h * up), 1e-5f);
 }
 
+// Eq. (3) with t > 0: a gravity centre beside the blade pulls its tip toward the centre. The blade
+// stands straight at the origin with its width along +X, so front gravity (Eq. (4)) pushes along
+// +Z only and any x movement of the tip comes from the centre.
+TEST(PhysicsReference, GravityCentreMixPullsTheTipTowardTheCentre) {
+    const float h = 0.4f;
+    auto tipAfterOneSecond = [&](glm::vec3 centre_m, float t) {
+        testing::TestMeadow m;
+        const glm::vec3 up{0.f, 1.f, 0.f}, top = h * up;
+        m.blades.push_back({glm::vec4(0.f, 0.f, 0.f, h), glm::vec4(top, 0.01f), glm::vec4(top, 5.f),
+                            glm::vec4(up, 0.f)});
+        m.rests.push_back({glm::vec4(top, 0.f), glm::vec4(top, 0.f)});
+        PhysicsSettings s = testing::calmSettings();
+        s.gravityCenter_m = centre_m;
+        s.gravityCenter_mps2 = 9.81f;
+        s.gravityCenterMix = t;
+        for (std::uint32_t f = 0; f < 60; ++f) step(m, s, f);
+        return glm::vec3(m.blades[0].v2_stiffness) - top;  // tip displacement from rest
+    };
+    const glm::vec3 centre_m{2.f, 0.2f, 0.f};
+    const glm::vec3 none = tipAfterOneSecond(centre_m, 0.f);
+    const glm::vec3 half = tipAfterOneSecond(centre_m, 0.5f);
+    const glm::vec3 full = tipAfterOneSecond(centre_m, 1.f);
+    const glm::vec3 mirrored = tipAfterOneSecond({-2.f, 0.2f, 0.f}, 1.f);
+    std::cout << "tip x after 1 s, t = 0 / 0.5 / 1: " << none.x / h << " / " << half.x / h << " / "
+              << full.x / h << " h; centre at -x, t = 1: " << mirrored.x / h << " h\n";
+    EXPECT_LT(std::abs(none.x), 1e-6f * h) << "t = 0: the centre must not act";
+    EXPECT_GT(half.x, 0.01f * h);
+    EXPECT_GT(full.x, 1.5f * half.x) << "more of the centre, more pull toward it";
+    EXPECT_LT(mirrored.x, -0.01f * h);
+    EXPECT_NEAR(mirrored.x, -full.x, 1e-6f) << "the pull follows the centre";
+    EXPECT_GT(glm::dot(full, glm::normalize(centre_m - glm::vec3(0.f))), 0.f);
+}
+
 // The invariants of the brief, on the CPU reference: 256 blades, 10,000 frames (167 s at 60 Hz)
 // of strong wind and three sweeping spheres, then the storm stops.
 TEST(PhysicsReference, TenThousandStormFramesKeepBladesFiniteAboveGroundAtLengthAndTheyRecover) {

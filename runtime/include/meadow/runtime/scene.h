@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "meadow/modeling/archetype.h"
+#include "meadow/runtime/physics.h"
 
 namespace meadow::runtime {
 
@@ -23,11 +24,17 @@ struct SceneMesh {
     glm::vec3 albedo{0.25f, 0.2f, 0.12f};  // linear colour of the opaque surface
 };
 
-struct DensityMap {
-    std::filesystem::path image;  // 8/16-bit grey image; white keeps every blade, black none
-    glm::vec2 minXZ_m{0.f};       // world XZ of the image's first column / row
-    glm::vec2 maxXZ_m{1.f};       // world XZ of its last column / row
+// An image laid over the world's XZ plane, looked up at a blade's root (nearest texel, clamped
+// at the border; runtime/src/ground_maps.h).
+struct GroundImage {
+    std::filesystem::path image;
+    glm::vec2 minXZ_m{0.f};  // world XZ of the image's first column / row
+    glm::vec2 maxXZ_m{1.f};  // world XZ of its last column / row
 };
+// 8/16-bit grey image; white keeps every blade, black none.
+using DensityMap = GroundImage;
+// 8-bit grey image; value k plants archetype k (in the library's order), 255 picks by weight.
+using ArchetypeMap = GroundImage;
 
 struct BladeSeeding {
     float density_per_m2 = 300.f;  // blades per square metre of surface (before the density map)
@@ -63,10 +70,16 @@ struct LightDescription {
     glm::vec3 skyColor{0.55f, 0.7f, 0.9f};  // display colour of the background
 };
 
+// Wind of Jahrmann & Wimmer 2017, Sec. 5.1. It pushes the tip with a velocity (v2 += w dt), so
+// its amplitudes are in m/s. The wave and the source's rings share wavelength and frequency.
 struct WindDescription {
     glm::vec3 direction{1.f, 0.f, 0.f};  // world, normalised on load
-    float strength_m_s2 = 2.f;
-    float frequency_hz = 0.4f;  // gust frequency
+    float waveAmplitude_m_s = 2.f;       // travelling wave along direction, in [0, A]
+    float wavelength_m = PhysicsSettings{}.windWavelength_m;
+    float frequency_hz = 0.4f;  // gust frequency: the waves' period is 1 / frequency
+    glm::vec3 source_m = PhysicsSettings{}.windSource_m;  // point source (a fan, a helicopter)
+    float sourceAmplitude_m_s = PhysicsSettings{}.windSource_mps;  // 0: no point source
+    float sourceRadius_m = PhysicsSettings{}.windSourceRadius_m;   // fades linearly to 0 here
 };
 
 struct ColliderDescription {
@@ -75,10 +88,15 @@ struct ColliderDescription {
     glm::vec3 velocity_m_s{0.f};  // the centre moves linearly with time
 };
 
+// Environmental gravity, Eq. (3): direction D and centre C, blended by gravityCenterMix (t).
 struct PhysicsDescription {
     bool enabled = true;
-    float gravity_m_s2 = 9.81f;
-    float collisionDecay_per_s = 0.5f;  // how fast the persistent collision strength eta fades
+    glm::vec3 gravityDirection = PhysicsSettings{}.gravityDirection;  // normalised on load
+    float gravity_m_s2 = PhysicsSettings{}.gravity_mps2;
+    glm::vec3 gravityCenter_m = PhysicsSettings{}.gravityCenter_m;  // a planet's centre
+    float gravityCenter_m_s2 = PhysicsSettings{}.gravityCenter_mps2;
+    float gravityCenterMix = PhysicsSettings{}.gravityCenterMix;    // t: 0 direction, 1 centre
+    float collisionDecay_per_s = PhysicsSettings{}.etaDecay_per_s;  // how fast eta fades
 };
 
 struct CullingDescription {
@@ -117,7 +135,8 @@ struct SceneDescription {
     std::vector<SceneMesh> grassMeshes;
     std::vector<SceneMesh> props;
     std::vector<modeling::Archetype> archetypes;
-    std::vector<float> archetypeWeights;  // one per archetype, > 0
+    std::vector<float> archetypeWeights;       // one per archetype, > 0
+    std::optional<ArchetypeMap> archetypeMap;  // checked on load (ground_maps.h)
     BladeSeeding blades;
     CameraDescription camera;
     LightDescription light;
