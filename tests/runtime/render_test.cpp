@@ -12,21 +12,11 @@
 namespace meadow::runtime {
 namespace {
 
-// Grass on a 1 m square seen from the side and above: the lower half of the image is the
-// meadow, the top rows are sky.
 SceneDescription tinyMeadow() {
-    const auto dir = test::freshTestDirectory("render");
-    test::writeQuad(dir / "ground.gltf", -0.5f, 0.5f, -0.5f, 0.5f);
-    const nlohmann::json extra = {
-        {"blades", {{"density_per_m2", 400}, {"tuft_fraction", 0.5}, {"seed", 2}}},
-        {"camera",
-         {{"position_m", {0, 0.45, 0.9}}, {"target_m", {0, 0.05, 0}}, {"vertical_fov_deg", 50}}},
-        {"light", {{"sky_color", {0.6, 0.75, 0.9}}}},
-        {"render", {{"size_px", {96, 64}}, {"msaa_samples", 2}, {"patch_size", 64}}}};
-    return loadSceneDescription(test::writeScene(dir, test::minimalScene("ground.gltf", extra)));
+    return loadSceneDescription(test::writeSmallMeadow(test::freshTestDirectory("render")));
 }
 
-bool isGreen(const cv::Vec3b& bgr) { return bgr[1] > bgr[2] + 10 && bgr[1] > bgr[0] + 10; }
+bool isGreen(const cv::Vec3b& bgr) { return test::isGreen(bgr[0], bgr[1], bgr[2]); }
 
 TEST(RenderGLTest, TinyMeadowHasGrassBelowAndSkyAbove) {
     GlContext context;

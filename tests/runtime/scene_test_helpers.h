@@ -84,4 +84,24 @@ inline std::filesystem::path writeScene(const std::filesystem::path& dir,
     return dir / name;
 }
 
+// Grass on a 1 m square (written to dir/ground.gltf) seen from the side and above: the lower
+// half of a 96 x 64 image is the meadow, the top rows are sky. `extra` is merged over it.
+inline std::filesystem::path writeSmallMeadow(
+    const std::filesystem::path& dir, const nlohmann::json& extra = nlohmann::json::object()) {
+    writeQuad(dir / "ground.gltf", -0.5f, 0.5f, -0.5f, 0.5f);
+    nlohmann::json settings = {
+        {"blades", {{"density_per_m2", 400}, {"tuft_fraction", 0.5}, {"seed", 2}}},
+        {"camera",
+         {{"position_m", {0, 0.45, 0.9}}, {"target_m", {0, 0.05, 0}}, {"vertical_fov_deg", 50}}},
+        {"light", {{"sky_color", {0.6, 0.75, 0.9}}}},
+        {"render", {{"size_px", {96, 64}}, {"msaa_samples", 2}, {"patch_size", 64}}}};
+    settings.merge_patch(extra);
+    return writeScene(dir, minimalScene("ground.gltf", settings));
+}
+
+// Grass green in an 8-bit BGR image: green clearly above red and blue.
+inline bool isGreen(std::uint8_t b, std::uint8_t g, std::uint8_t r) {
+    return g > r + 10 && g > b + 10;
+}
+
 }  // namespace meadow::runtime::test
