@@ -154,6 +154,11 @@ TEST(Segmenter, BothPlaneFittersRemoveTheGroundAndKeepTheBlades) {
         const auto& plane = *std::find_if(s.report.begin(), s.report.end(),
                                           [](const auto& r) { return r.stage == "plane removal"; });
         EXPECT_GT(plane.droppedPixels, groundTotal / 2) << toString(method);
+        // The ground handed on (for rooting blades): y = +cameraHeight_m, normal up (-y).
+        ASSERT_TRUE(s.groundPlane) << toString(method);
+        const cv::Vec4f g = *s.groundPlane;
+        EXPECT_NEAR(g[1], -1.f, 0.01f) << toString(method) << " normal " << g;
+        EXPECT_NEAR(g[3], drawn::Scene{}.cameraHeight_m, 0.01f) << toString(method);
     }
 }
 
@@ -168,6 +173,7 @@ TEST(Segmenter, WithoutPlaneRemovalAUserBandHoldingTheGroundKeepsIt) {
     const cv::Mat1b ground =
         (drawn.labels == 0) & (drawn.frame.depth_mm > 0) & (drawn.frame.depth_mm < 2000);
     EXPECT_GT(cv::countNonZero(ground & s.clusterMask), cv::countNonZero(ground) / 2);
+    EXPECT_FALSE(s.groundPlane) << "no plane fit, no ground";
 }
 
 TEST(Segmenter, AutomaticBandIsTheTuftsDepthMode) {

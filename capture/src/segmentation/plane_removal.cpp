@@ -330,9 +330,10 @@ std::vector<Plane> organizedPlanes(const cv::Mat1w& depth_mm, const Intrinsics& 
 
 }  // namespace
 
-void removePlanes(const cv::Mat1w& depth_mm, const Intrinsics& intrinsics,
-                  const SegmenterParams& params, cv::Mat1b& mask, StageReport& report) {
-    if (cv::countNonZero(mask) < 3) return;
+std::optional<cv::Vec4f> removePlanes(const cv::Mat1w& depth_mm, const Intrinsics& intrinsics,
+                                      const SegmenterParams& params, cv::Mat1b& mask,
+                                      StageReport& report) {
+    if (cv::countNonZero(mask) < 3) return std::nullopt;
     const auto planes = params.planeMethod == PlaneMethod::Ransac
                             ? ransacPlanes(depth_mm, intrinsics, params, mask.clone(), report.notes)
                             : organizedPlanes(depth_mm, intrinsics, params, mask, report.notes);
@@ -346,6 +347,11 @@ void removePlanes(const cv::Mat1w& depth_mm, const Intrinsics& intrinsics,
           << " deg from level: " << cleared << " px dropped as ground/background";
         report.notes.push_back(s.str());
     }
+    if (planes.empty()) return std::nullopt;
+    // The normal points up, away from the ground: toward the camera's -y (y is down).
+    Eigen::Vector4f c = planes.front().coefficients;
+    if (c[1] > 0.f) c = -c;
+    return cv::Vec4f(c[0], c[1], c[2], c[3]);
 }
 
 }  // namespace meadow::capture::segmentation

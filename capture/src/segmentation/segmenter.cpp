@@ -197,7 +197,7 @@ struct Segmenter::Impl {
         }
         if (removePlanes)
             stage(out, "plane removal", &mask, [&](StageReport& r) {
-                seg::removePlanes(depth_mm, intrinsics, params, mask, r);
+                out.groundPlane = seg::removePlanes(depth_mm, intrinsics, params, mask, r);
             });
         if (!userBand) {
             stage(out, "depth band", &mask, [&](StageReport& r) {

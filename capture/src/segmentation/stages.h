@@ -2,6 +2,7 @@
 // Internal: one function per segmentation stage (one .cpp each). Masks are CV_8U, 255 = kept.
 // Each stage appends what it dropped to the StageReport it is given.
 #include <opencv2/core/mat.hpp>
+#include <optional>
 #include <span>
 #include <vector>
 
@@ -38,8 +39,10 @@ void growDepthContinuous(const cv::Mat1w& depth_mm, const cv::Mat1b& allowed, De
                          const SegmenterParams& params, cv::Mat1b& bandMask, StageReport& report);
 
 // plane_removal.cpp (PCL). Clears mask pixels on large oblique planes (ground, table top).
-void removePlanes(const cv::Mat1w& depth_mm, const Intrinsics& intrinsics,
-                  const SegmenterParams& params, cv::Mat1b& mask, StageReport& report);
+// Returns the ground: the plane with the most inliers, as Segmentation::groundPlane.
+std::optional<cv::Vec4f> removePlanes(const cv::Mat1w& depth_mm, const Intrinsics& intrinsics,
+                                      const SegmenterParams& params, cv::Mat1b& mask,
+                                      StageReport& report);
 
 // outlier_removal.cpp (PCL for Statistical).
 void removeOutliers(const cv::Mat1w& depth_mm, const Intrinsics& intrinsics,

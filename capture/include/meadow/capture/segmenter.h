@@ -17,7 +17,9 @@
 #include <filesystem>
 #include <memory>
 #include <opencv2/core/mat.hpp>
+#include <opencv2/core/matx.hpp>
 #include <opencv2/core/types.hpp>
+#include <optional>
 #include <span>
 #include <string>
 #include <vector>
@@ -159,7 +161,11 @@ struct Segmentation {
     cv::Mat1b clusterMask;  // foreground after clean-up (255), frame-sized
     std::vector<StageReport> report;
     float nearDepth_m = 0.0f, farDepth_m = 0.0f;  // the band actually used
-    std::string noBladesReason;                   // set when blades is empty
+    // The ground the plane removal found, in camera space (metres): n.x + d = 0 with |n| = 1 and
+    // n pointing up, away from the ground (n.x + d > 0 above it). Empty without a plane fit or
+    // when no plane passed as ground.
+    std::optional<cv::Vec4f> groundPlane;
+    std::string noBladesReason;  // set when blades is empty
     [[nodiscard]] bool empty() const { return blades.empty(); }
     [[nodiscard]] std::vector<cv::Point> cutPoints_px() const;
     [[nodiscard]] double totalTime_ms() const;
