@@ -30,6 +30,8 @@ constexpr float kBasePartFraction = 0.08f;
 constexpr float kWidthReferenceFrom = 0.15f;
 constexpr float kWidthReferenceTo = 0.35f;
 constexpr float kMillimetresPerMetre = 1000.f;
+// Columns either side of the base point searched for the cluster's lowest pixel.
+constexpr int kLowestRowHalfWidth_px = 2;
 
 float medianOf(std::vector<float> v) {
     const auto mid = v.begin() + static_cast<std::ptrdiff_t>(v.size() / 2);
@@ -50,6 +52,25 @@ std::optional<ClusterBase> clusterBase(const capture::Segmentation& segmentation
     const bool useMask = !mask.empty() && mask.size() == frame.depth_mm.size();
     ClusterBase base;
     base.base_px = {cluster->basePoint_px.x, cluster->basePoint_px.y};
+    if (useMask && params.toLowestRow) {
+        // The base point is the centroid of the cluster's lowest rows, half that band above the
+        // cluster's bottom; the tuft's root is at the bottom, so the base moves down to the
+        // lowest cluster pixel under it (within a few columns), to that pixel's lower edge.
+        // Only the run of mask pixels that continues down from the base point counts: the mask
+        // holds every cluster, and a fragment lower down is not this tuft's bottom.
+        const int u = static_cast<int>(std::lround(base.base_px.x));
+        const int v = std::clamp(static_cast<int>(std::lround(base.base_px.y)), 0, mask.rows - 1);
+        int lowest = -1;
+        for (int du = -kLowestRowHalfWidth_px; du <= kLowestRowHalfWidth_px; ++du) {
+            const int x = u + du;
+            if (x < 0 || x >= mask.cols || mask(v, x) == 0) continue;
+            int y = v;
+            while (y + 1 < mask.rows && mask(y + 1, x) != 0) ++y;
+            lowest = std::max(lowest, y);
+        }
+        if (static_cast<float>(lowest) + 0.5f > base.base_px.y)
+            base.base_px.y = static_cast<float>(lowest) + 0.5f;
+    }
     const int u0 = static_cast<int>(std::lround(base.base_px.x)),
               v0 = static_cast<int>(std::lround(base.base_px.y));
     std::vector<float> readings_m;
@@ -67,6 +88,15 @@ std::optional<ClusterBase> clusterBase(const capture::Segmentation& segmentation
     base.depthReadings = static_cast<int>(readings_m.size());
     base.depth_m = medianOf(std::move(readings_m));
     base.base_m = frame.intrinsics.backProject(base.base_px.x, base.base_px.y, base.depth_m);
+    if (params.dropToGround && segmentation.groundPlane) {
+        const cv::Vec4f& g = *segmentation.groundPlane;
+        const glm::vec3 up(g[0], g[1], g[2]);
+        const float height_m = glm::dot(up, base.base_m) + g[3];
+        if (height_m > 0.f && height_m <= params.maxGroundDrop_m) {
+            base.base_m -= height_m * up;
+            base.groundDrop_m = height_m;
+        }
+    }
     return base;
 }
 

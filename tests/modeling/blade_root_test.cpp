@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <glm/geometric.hpp>
+#include <optional>
 
 #include "meadow/modeling/blade_fit.h"
 #include "modeling/blade_fit_synthetic_test.h"
@@ -84,6 +85,67 @@ TEST(BladeRoot, RefusesABaseAboveTheBladesLowerEnd) {
     rootSkeleton(c.skeleton, baseAt(c.skeleton.points_m[40]));  // up the blade
     EXPECT_TRUE(c.skeleton.baseNotRooted);
     EXPECT_EQ(c.skeleton.points_m, before);
+}
+
+// A cluster mask of rows 100..200 x columns 50..70 at 0.5 m, its base point where the segmenter
+// puts it (the centroid of its lowest rows, a few rows above its bottom), optionally a ground.
+struct FlatCluster {
+    capture::Segmentation segmentation;
+    capture::DepthFrame frame;
+};
+
+FlatCluster flatCluster(std::optional<cv::Vec4f> ground = std::nullopt) {
+    FlatCluster c;
+    c.frame.intrinsics = fineIntrinsics();
+    c.frame.depth_mm =
+        cv::Mat1w(fineIntrinsics().height_px, fineIntrinsics().width_px, std::uint16_t{500});
+    c.segmentation.clusterMask = cv::Mat1b::zeros(c.frame.depth_mm.size());
+    c.segmentation.clusterMask(cv::Rect(50, 100, 21, 101)).setTo(255);
+    capture::BladeCluster cluster;
+    cluster.basePoint_px = {60.f, 197.5f};
+    cluster.bladeIds = {1};
+    c.segmentation.clusters.push_back(cluster);
+    c.segmentation.groundPlane = ground;
+    return c;
+}
+
+TEST(ClusterBase, SitsOnTheClustersLowestRowNotOnTheCentroidOfItsLowestBand) {
+    const FlatCluster c = flatCluster();
+    const auto base = clusterBase(c.segmentation, 1, c.frame);
+    ASSERT_TRUE(base);
+    EXPECT_FLOAT_EQ(base->base_px.x, 60.f);
+    EXPECT_FLOAT_EQ(base->base_px.y, 200.5f) << "the lower edge of row 200";
+    EXPECT_FLOAT_EQ(base->depth_m, 0.5f);
+    EXPECT_EQ(base->groundDrop_m, 0.f) << "no ground plane given";
+    RootParams off;
+    off.toLowestRow = false;
+    EXPECT_FLOAT_EQ(clusterBase(c.segmentation, 1, c.frame, off)->base_px.y, 197.5f);
+}
+
+TEST(ClusterBase, DropsOntoAGroundPlaneJustBelowItAndIgnoresOneFarOrAbove) {
+    const FlatCluster plain = flatCluster();
+    const glm::vec3 visible = clusterBase(plain.segmentation, 1, plain.frame)->base_m;
+    // Level ground (normal up: camera -y, as y is down) below_m under the visible base:
+    // n.x + d = 0 at y = visible.y + below_m.
+    const auto groundAt = [&](float below_m) {
+        return cv::Vec4f(0.f, -1.f, 0.f, visible.y + below_m);
+    };
+    {
+        const FlatCluster c = flatCluster(groundAt(0.01f));
+        const auto base = clusterBase(c.segmentation, 1, c.frame);
+        ASSERT_TRUE(base);
+        EXPECT_NEAR(base->groundDrop_m, 0.01f, 1e-6f);
+        EXPECT_NEAR(base->base_m.y, visible.y + 0.01f, 1e-6f);
+        EXPECT_NEAR(base->base_m.x, visible.x, 1e-6f);
+        EXPECT_NEAR(base->base_m.z, visible.z, 1e-6f);
+    }
+    for (const float below_m : {RootParams{}.maxGroundDrop_m + 0.01f, -0.01f}) {
+        const FlatCluster c = flatCluster(groundAt(below_m));
+        const auto base = clusterBase(c.segmentation, 1, c.frame);
+        ASSERT_TRUE(base);
+        EXPECT_EQ(base->groundDrop_m, 0.f) << "ground " << below_m << " m below";
+        EXPECT_NEAR(glm::distance(base->base_m, visible), 0.f, 1e-6f);
+    }
 }
 
 }  // namespace

@@ -18,8 +18,10 @@
 // error 3.3-4.9 % (was 6.9-17 %), width MAE 7.4-15 % (was 10-20 %). Still missing: the extension
 // is straight, so a drooping tip (shrub leaf) ends off the true curve; slim grass is
 // over-segmented (several pieces per blade, each rooted).
+// The base now sits on the cluster's lowest row, or on the ground plane just below it: the
+// fitted v0 was 3.3-4.8 mm above the true root (up to 20 mm), now within about 1 mm vertically.
 // Asserted with margin: at least a third of the true blades fitted; on the four leaf presets
-// (slim grass excluded, see above) the mean v0 error <= 15 mm, the mean height error <= 8 %, the
+// (slim grass excluded, see above) the mean v0 error <= 8 mm, the mean height error <= 8 %, the
 // tip RMS <= 20 mm and the mean width MAE <= 15 % of max width. The other targets are printed.
 // MEADOW_MODELING_TABLE=1 prints the per-preset table; MEADOW_MODELING_VERBOSE=1 every blade.
 #include <gtest/gtest.h>
@@ -51,7 +53,9 @@ constexpr double kMinMaskShare = 0.5;  // share of a segmented mask on its true 
 constexpr int kWidthComparisonSamples = 50;
 // Asserted on the leaf presets (all but slim grass): measured 6.8 mm and 11.2 % with the segmenter
 // of a6b89d8, 10.3 mm and 14.8 % with its edge smoothing under way; 36 mm and 27 % unrooted.
-constexpr float kMaxLeafV0Error_mm = 15.f;
+// With the base on the cluster's lowest row and dropped onto the ground plane (blade_root.h):
+// mean v0 error 3.8 mm (seed 1; seeds 2 and 3: 6.6 and 6.4 mm), was 7.3 / 8.5 / 9.8 mm.
+constexpr float kMaxLeafV0Error_mm = 8.f;
 // With the tip extension (blade_tip.h): measured 4.2 %, 12.9 mm and 10.3 % (seed 1); without it
 // 11.8 %, 24.8 mm and 14.6 %. Seeds 2 and 3 measured <= 6.8 % height error and <= 22 mm tip RMS.
 constexpr float kMaxLeafHeightError = 0.08f;

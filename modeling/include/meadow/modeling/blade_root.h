@@ -29,13 +29,23 @@ struct RootParams {
     // length is not the blade's root (a blade not attached to the tuft, a wrong cluster): the
     // blade is left unrooted and flagged. Measured extensions are 0.1-0.6 of the visible length.
     float maxExtensionFraction = 1.f;
+    // The base point is the centroid of the cluster's lowest rows, and the plane removal clears
+    // what lies within its tolerance of the ground, so the lowest visible part of a tuft sits a
+    // few millimetres above its root (measured 3.3-4.8 mm on the leaf presets, up to 20 mm).
+    // With a ground plane from the segmentation, a base at most maxGroundDrop_m above it is
+    // moved down onto it along its normal: a tuft grows from the ground.
+    bool dropToGround = true;
+    // Without a ground plane, the base moves down to the cluster's lowest pixel under it.
+    bool toLowestRow = true;
+    float maxGroundDrop_m = 0.04f;
 };
 
 struct ClusterBase {
     glm::vec2 base_px{0.f};  // capture::BladeCluster::basePoint_px
     float depth_m = 0.f;     // median of the cluster's valid readings near it
-    glm::vec3 base_m{0.f};   // back-projected, camera space
+    glm::vec3 base_m{0.f};   // back-projected, camera space; on the ground when dropped
     int depthReadings = 0;
+    float groundDrop_m = 0.f;  // how far base_m was moved down onto the ground plane
 };
 
 // The base of the cluster whose bladeIds hold `bladeId`: its base point, with the median depth of
