@@ -99,6 +99,14 @@ BENCHMARK(BM_Frame)
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime()
     ->MinTime(1.0);
+// 1 M blades, the paper's scale: on llvmpipe a frame takes seconds, so two timed frames each.
+// Run alone with --benchmark_filter=blades:1000000.
+BENCHMARK(BM_Frame)
+    ->ArgsProduct({{1000000}, {kAll, kNoCollisions, kNoCulling}})
+    ->ArgNames({"blades", "mode"})
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime()
+    ->Iterations(2);
 
 }  // namespace
 }  // namespace meadow::runtime
