@@ -23,11 +23,13 @@
 // Asserted with margin: at least a third of the true blades fitted; on the four leaf presets
 // (slim grass excluded, see above) the mean v0 error <= 8 mm, the mean height error <= 8 %, the
 // tip RMS <= 20 mm and the mean width MAE <= 15 % of max width. The other targets are printed.
-// MEADOW_MODELING_TABLE=1 prints the per-preset table; MEADOW_MODELING_VERBOSE=1 every blade.
+// MEADOW_MODELING_TABLE=1 prints the per-preset table; MEADOW_MODELING_VERBOSE=1 every blade;
+// MEADOW_MODELING_SEED=N runs seed N instead of 1 (the bounds were checked on seeds 1-3).
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <cstdlib>
 #include <glm/geometric.hpp>
 #include <iomanip>
@@ -60,6 +62,11 @@ constexpr float kMaxLeafV0Error_mm = 8.f;
 // 11.8 %, 24.8 mm and 14.6 %. Seeds 2 and 3 measured <= 6.8 % height error and <= 22 mm tip RMS.
 constexpr float kMaxLeafHeightError = 0.08f;
 constexpr float kMaxLeafTipRms_mm = 20.f;
+
+std::uint64_t seedFromEnvironment() {
+    const char* text = std::getenv("MEADOW_MODELING_SEED");
+    return text ? std::strtoull(text, nullptr, 10) : 1;
+}
 
 struct Score {
     int truth = 0, fitted = 0, failed = 0;
@@ -191,7 +198,7 @@ TEST(ModelingAccuracy, LeafBladesAreRootedAtTheirTrueRootAtNominalNoiseAndTarget
     for (const std::string& preset : kBladeTypePresets) {
         Score perPreset;
         for (const float distance_m : {0.6f, 0.8f, 1.0f}) {
-            const Score s = run(preset, distance_m, 1);
+            const Score s = run(preset, distance_m, seedFromEnvironment());
             perPreset.add(s);
             if (table)
                 std::cout << std::fixed << std::setprecision(3) << "| " << preset << " | "
