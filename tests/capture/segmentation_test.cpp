@@ -418,6 +418,30 @@ TEST(SegmenterFlags, StraightBladesRaiseNoFlags) {
     for (const auto& b : s.blades) EXPECT_TRUE(b.flags.empty()) << s.summary();
 }
 
+// Two blades touching along their whole length come out as one piece whose top has two tips
+// with a notch between them: too shallow to cut (persistence below the cut threshold) but not
+// the staircase noise of one blade's contour. The piece is flagged; the same piece with a
+// plain top is not.
+TEST(SegmenterFlags, PieceWithTwoTipsTooCloseToCutIsOverlapping) {
+    const auto piece = [](bool notch) {
+        cv::Mat1b mask(480, 640, std::uint8_t{0});
+        std::vector<cv::Point> outline{{290, 350}, {290, 200}, {296, 200}};
+        if (notch) outline.push_back({300, 208});  // 8 px deep between the two tips
+        outline.insert(outline.end(), {{304, 200}, {310, 200}, {310, 350}});
+        cv::fillPoly(mask, std::vector<std::vector<cv::Point>>{outline}, 255);
+        return Segmenter().segmentMask(mask);
+    };
+    const Segmentation twoTips = piece(true);
+    ASSERT_EQ(twoTips.blades.size(), 1u) << twoTips.summary();
+    const auto& flags = twoTips.blades[0].flags;
+    EXPECT_NE(std::find(flags.begin(), flags.end(), BladeFlag::Overlapping), flags.end())
+        << twoTips.summary();
+    EXPECT_NE(twoTips.summary().find("between two tips"), std::string::npos) << twoTips.summary();
+    const Segmentation plain = piece(false);
+    ASSERT_EQ(plain.blades.size(), 1u) << plain.summary();
+    EXPECT_TRUE(plain.blades[0].flags.empty()) << plain.summary();
+}
+
 TEST(SegmenterFlags, ClusterCutByTheBottomBorderHasItsBaseHidden) {
     const cv::Mat1b mask(480, 640, std::uint8_t{0});
     cv::rectangle(mask, {300, 300}, {340, 479}, 255, cv::FILLED);

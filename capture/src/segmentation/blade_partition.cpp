@@ -176,6 +176,19 @@ std::vector<BladeContour> partitionCluster(BladeCluster& cluster, const cv::Mat1
                 blade.tipIndex = s;
             }
         }
+        // A minimum too shallow to cut but deep inside the piece: two tips, perhaps two
+        // blades that touch along their length (merged into one piece).
+        float secondDip_px = 0.f;
+        for (const auto& m : minima)
+            if (m.second < threshold && wrap(m.first - start, n) > 0 &&
+                wrap(m.first - start, n) < length)
+                secondDip_px = std::max(secondDip_px, m.second);
+        if (params.secondTipFraction > 0.f && secondDip_px >= params.secondTipFraction * threshold)
+            addFlag(blade, BladeFlag::Overlapping,
+                    "its contour dips " + std::to_string(secondDip_px).substr(0, 4) +
+                        " px between two tips (cuts need " +
+                        std::to_string(threshold).substr(0, 4) +
+                        " px): it may hold blades that touch");
         pieces.push_back(std::move(blade));
     }
 

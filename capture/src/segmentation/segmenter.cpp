@@ -85,6 +85,7 @@ std::string SegmenterParams::problem() const {
         {"minResolvableWidth_px", minResolvableWidth_px, 0.f, 1000.f},
         {"curlTurn_deg", curlTurn_deg, 0.f, 3600.f},
         {"overlapWidthRatio", overlapWidthRatio, 1.f, 1000.f},
+        {"secondTipFraction", secondTipFraction, 0.f, 1.f},
     };
     for (const auto& r : ranges) {
         if (!std::isfinite(r.value))

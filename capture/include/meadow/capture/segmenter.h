@@ -127,6 +127,10 @@ struct SegmenterParams {
     float minResolvableWidth_px = 2.0f;  // TooThin below this mean width
     float curlTurn_deg = 150.0f;         // CurlsSideways when the centre line turns more
     float overlapWidthRatio = 2.2f;      // Overlapping when this much wider than the median
+    // Overlapping when a blade's contour dips between two tips by at least this share of the
+    // cut threshold: too shallow to cut, deep enough for two blades that touch (measured: no
+    // clean leaf piece at 0-1x noise reaches 0.01 of it; merged touching blades 0.76).
+    float secondTipFraction = 0.4f;
 
     // Empty when usable; otherwise what is wrong with the parameters.
     [[nodiscard]] std::string problem() const;
