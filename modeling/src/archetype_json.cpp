@@ -56,7 +56,10 @@ json archetypeToJson(const Archetype& a) {
                 {"width_check_mae_mm", a.fit.widthCheckMae_mm},
                 {"side_length_ratio", a.fit.sideLengthRatio},
                 {"asymmetric", a.fit.asymmetric},
-                {"skeleton_points", a.fit.skeletonPoints}};
+                {"skeleton_points", a.fit.skeletonPoints},
+                {"base_extension_mm", a.fit.baseExtension_mm},
+                {"base_not_rooted", a.fit.baseNotRooted},
+                {"tip_extension_mm", a.fit.tipExtension_mm}};
     j["source"] = {{"recording", a.source.recording},
                    {"frame", a.source.frame},
                    {"blade_id", a.source.bladeId}};
@@ -96,13 +99,24 @@ Archetype archetypeFromJson(const json& value, const std::string& path) {
         a.fit.shapeError_mm = fit.number("shape_error_mm", 0.f);
         a.fit.widthCheckMae_mm = fit.number("width_check_mae_mm", 0.f);
         a.fit.sideLengthRatio = fit.number("side_length_ratio", 1.f);
-        if (fit.has("asymmetric")) {
-            const json& flag = r.object("fit")["asymmetric"];
-            if (!flag.is_boolean())
-                throw JsonFieldError(fit.pathOf("asymmetric"), "must be true or false");
-            a.fit.asymmetric = flag.get<bool>();
-        }
+        const auto flag = [&](const char* name) {
+            if (!fit.has(name)) return false;
+            const json& value = r.object("fit")[name];
+            if (!value.is_boolean())
+                throw JsonFieldError(fit.pathOf(name), "must be true or false");
+            return value.get<bool>();
+        };
+        const auto length_mm = [&](const char* name) {
+            const float v = fit.number(name, 0.f);
+            if (v < 0.f) throw JsonFieldError(fit.pathOf(name), "must not be negative");
+            return v;
+        };
+        a.fit.asymmetric = flag("asymmetric");
         a.fit.skeletonPoints = fit.has("skeleton_points") ? fit.integer("skeleton_points") : 0;
+        // Rooting and tip extension (blade_root.h, blade_tip.h); absent in older libraries.
+        a.fit.baseExtension_mm = length_mm("base_extension_mm");
+        a.fit.baseNotRooted = flag("base_not_rooted");
+        a.fit.tipExtension_mm = length_mm("tip_extension_mm");
     }
     if (r.has("source")) {
         const JsonReader src(r.object("source"), r.pathOf("source"));

@@ -26,6 +26,9 @@ ArchetypeLibrary sampleLibrary() {
     a.fit.spineRms_mm = 0.4f;
     a.fit.asymmetric = true;
     a.fit.skeletonPoints = 57;
+    a.fit.baseExtension_mm = 21.5f;
+    a.fit.baseNotRooted = false;
+    a.fit.tipExtension_mm = 7.25f;
     a.source = {"samples/recordings/quadratic-leaf", 2, 3};
     a.knots_m = {{0, 0, 0}, {0.02f, 0.1f, 0}, {0.05f, 0.15f, -0.001f}};
     Archetype b = a;
@@ -73,6 +76,9 @@ TEST(ArchetypeLibrary, WriteThenReadIsIdentity) {
         EXPECT_EQ(a.fit.spineRms_mm, b.fit.spineRms_mm);
         EXPECT_EQ(a.fit.asymmetric, b.fit.asymmetric);
         EXPECT_EQ(a.fit.skeletonPoints, b.fit.skeletonPoints);
+        EXPECT_EQ(a.fit.baseExtension_mm, b.fit.baseExtension_mm);
+        EXPECT_EQ(a.fit.baseNotRooted, b.fit.baseNotRooted);
+        EXPECT_EQ(a.fit.tipExtension_mm, b.fit.tipExtension_mm);
         EXPECT_EQ(a.source.recording, b.source.recording);
         EXPECT_EQ(a.source.frame, b.source.frame);
         EXPECT_EQ(a.source.bladeId, b.source.bladeId);
@@ -119,6 +125,12 @@ TEST(ArchetypeLibrary, RejectsNaNInfinityAndOutOfRangeValuesNamingTheField) {
     expectRejected(withArchetypeField("width_m", "[0.01, -0.002]"),
                    "archetypes[0].width_m[1]: is negative");
     expectRejected(withArchetypeField("width_m", "[0.01]"), "at least 2 samples");
+    nlohmann::json doc = nlohmann::json::parse(serialiseArchetypeLibrary(sampleLibrary()));
+    doc["archetypes"][0]["fit"]["tip_extension_mm"] = -3;
+    expectRejected(doc.dump(), "archetypes[0].fit.tip_extension_mm: must not be negative");
+    doc["archetypes"][0]["fit"]["tip_extension_mm"] = 3;
+    doc["archetypes"][0]["fit"]["base_not_rooted"] = "no";
+    expectRejected(doc.dump(), "archetypes[0].fit.base_not_rooted: must be true or false");
     expectRejected(withArchetypeField("nearest_shape", "\"hexagon\""), "unknown shape 'hexagon'");
     expectRejected(
         withArchetypeField("spine_m", R"({"v0": [0,0,0], "v1": [0,0.1], "v2": [0,0.2,0]})"),

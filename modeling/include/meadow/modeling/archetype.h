@@ -39,11 +39,11 @@ struct FitReport {
     int skeletonPoints = 0;        // matched contour pairs behind the fit
     // Rooting at the tuft's base (blade_root.h): length of the straight piece from the segmented
     // base down to the cluster's base point (0: not rooted); baseNotRooted: rooting was asked
-    // for and refused (the base is too far from the blade, or has no depth). Not in the JSON.
+    // for and refused (the base is too far from the blade, or has no depth).
     float baseExtension_mm = 0.f;
     bool baseNotRooted = false;
     // Tip extension (blade_tip.h): length of the straight piece added past the visible tip, where
-    // the tapering width's trend reaches zero (0: not extended). Not in the JSON.
+    // the tapering width's trend reaches zero (0: not extended).
     float tipExtension_mm = 0.f;
 };
 
