@@ -65,8 +65,9 @@ void runRender(const RenderArgs& args) {
     std::string csv = runtime::frameStatsCsvHeader();
     Progress progress("render", static_cast<std::size_t>(args.frames));
     double totalFrame_ms = 0.0;
-    for (int i = 0; i < args.frames; ++i) {
-        const runtime::RenderedFrame frame = renderer.renderFrame(i);
+    // Pipelined: frame i is written while the GPU renders the frames after it.
+    renderer.renderFrames(0, args.frames, /*wantImages=*/true, [&](runtime::RenderedFrame&& frame) {
+        const int i = frame.stats.frame;
         std::vector<unsigned char> png;
         if (!cv::imencode(".png", frame.image_bgr, png))
             throw runtime::RuntimeError("render: PNG encoding of frame " + std::to_string(i) +
@@ -79,7 +80,7 @@ void runRender(const RenderArgs& args) {
         csv += runtime::toCsvRow(frame.stats);
         totalFrame_ms += frame.stats.frame_ms;
         progress.update(static_cast<std::size_t>(i + 1));
-    }
+    });
     progress.finish();
     writeFileAtomically(fs::path(args.out) / "stats.csv", csv);
     std::cout << "wrote " << args.frames << " frame(s) of " << renderer.bladeCount()

@@ -184,15 +184,29 @@ void DrawPass::resolveColor() const {
                            width_, height_, GL_COLOR_BUFFER_BIT, GL_NEAREST);
 }
 
+cv::Mat bgrFromBottomUpRgba(const void* rgba, int width_px, int height_px) {
+    const cv::Mat view(height_px, width_px, CV_8UC4, const_cast<void*>(rgba));  // not written
+    cv::Mat bgr;
+    cv::cvtColor(view, bgr, cv::COLOR_RGBA2BGR);
+    cv::flip(bgr, bgr, 0);  // GL's first row is the bottom one
+    return bgr;
+}
+
 cv::Mat DrawPass::readBack() const {
     cv::Mat rgba(height_, width_, CV_8UC4);
     glPixelStorei(GL_PACK_ALIGNMENT, 1);
     glGetTextureImage(resolvedColor_.id(), 0, GL_RGBA, GL_UNSIGNED_BYTE,
                       static_cast<GLsizei>(rgba.total() * 4), rgba.data);
-    cv::Mat bgr;
-    cv::cvtColor(rgba, bgr, cv::COLOR_RGBA2BGR);
-    cv::flip(bgr, bgr, 0);  // GL's first row is the bottom one
-    return bgr;
+    return bgrFromBottomUpRgba(rgba.data, width_, height_);
+}
+
+void DrawPass::packColor(const gl::Buffer& pixelPack) const {
+    glBindBuffer(GL_PIXEL_PACK_BUFFER, pixelPack.id());
+    glPixelStorei(GL_PACK_ALIGNMENT, 1);
+    // With a pixel-pack buffer bound the pointer is an offset into it: no wait for the GPU.
+    glGetTextureImage(resolvedColor_.id(), 0, GL_RGBA, GL_UNSIGNED_BYTE,
+                      static_cast<GLsizei>(std::size_t{4} * width_ * height_), nullptr);
+    glBindBuffer(GL_PIXEL_PACK_BUFFER, 0);
 }
 
 }  // namespace meadow::runtime

@@ -11,6 +11,9 @@
 
 namespace meadow::runtime {
 
+// CV_8UC3 BGR, top row first, from GL's RGBA8 rows, bottom row first.
+[[nodiscard]] cv::Mat bgrFromBottomUpRgba(const void* rgba, int width_px, int height_px);
+
 class DrawPass {
 public:
     DrawPass(int width_px, int height_px, int msaaSamples);
@@ -25,7 +28,10 @@ public:
     // Blades of the visible-index buffer, as many as the indirect command says.
     void drawBlades(const SceneGpu& gpu, const SceneDescription& scene, float pixelSize_perM);
     void resolveColor() const;
-    [[nodiscard]] cv::Mat readBack() const;  // CV_8UC3 BGR, top row first
+    [[nodiscard]] cv::Mat readBack() const;  // CV_8UC3 BGR, top row first; waits for the GPU
+    // Queues a copy of the resolved image into `pixelPack` (RGBA8 rows, bottom first, at least
+    // 4 * width * height bytes) on the GPU; read it once the frame's fence has signalled.
+    void packColor(const gl::Buffer& pixelPack) const;
 
     [[nodiscard]] const gl::Texture& depthTexture() const { return resolvedDepth_; }
     [[nodiscard]] int width_px() const { return width_; }

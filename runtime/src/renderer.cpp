@@ -1,11 +1,12 @@
 #include "meadow/runtime/renderer.h"
 
-#include <array>
 #include <chrono>
 #include <cmath>
 #include <glm/gtc/matrix_transform.hpp>
+#include <stdexcept>
 
 #include "draw_pass.h"
+#include "frame_slots.h"
 #include "gl/gl_object.h"
 #include "meadow/runtime/error.h"
 #include "meadow/runtime/gl_context.h"
@@ -14,9 +15,6 @@
 
 namespace meadow::runtime {
 namespace {
-
-enum Stage { kPrepass, kPhysics, kCulling, kDraw, kResolve, kStageCount };
-constexpr double kMillisecondsPerNanosecond = 1e-6;
 
 struct CameraPose {
     glm::vec3 position_m, target_m;
@@ -51,7 +49,8 @@ struct Renderer::Impl {
     SceneBlades blades;
     SceneGpu gpu;
     DrawPass draw;
-    std::array<gl::Query, kStageCount> timers;
+    StageTimers timers;  // renderFrame's
+    FrameSlots slots;    // renderFrames'
     std::unique_ptr<BladeComputePass> physics, culling;
     float previousTime_s = -1.f;
 
@@ -60,10 +59,14 @@ struct Renderer::Impl {
           scene(s),
           blades(buildSceneBlades(s)),
           gpu(uploadScene(blades, s)),
-          draw(s.render.width_px, s.render.height_px, s.render.msaaSamples) {
-        for (gl::Query& q : timers) q = gl::Query::create(GL_TIME_ELAPSED);
+          draw(s.render.width_px, s.render.height_px, s.render.msaaSamples),
+          slots(draw.width_px(), draw.height_px()) {
         context.checkErrors("uploading the scene " + s.file.string());
     }
+
+    // Issues every GL command of frame `frameIndex` up to the MSAA resolve, timed by `frameTimers`,
+    // and returns the CPU-side part of its stats (frame, time, blade total). Reads nothing back.
+    FrameStats recordFrame(int frameIndex, StageTimers& frameTimers);
 };
 
 Renderer::Renderer(GlContext& context, const SceneDescription& scene)
@@ -79,17 +82,13 @@ void Renderer::setCullingPass(std::unique_ptr<BladeComputePass> pass) {
     impl_->culling = std::move(pass);
 }
 
-RenderedFrame Renderer::renderFrame(int frameIndex) {
-    Impl& im = *impl_;
-    const SceneDescription& scene = im.scene;
-    const auto start = std::chrono::steady_clock::now();
+FrameStats Renderer::Impl::recordFrame(int frameIndex, StageTimers& frameTimers) {
     const float time_s = static_cast<float>(frameIndex) / scene.render.frameRate_hz;
-    const float deltaTime_s = im.previousTime_s < 0.f ? 0.f : time_s - im.previousTime_s;
-    im.previousTime_s = time_s;
+    const float deltaTime_s = previousTime_s < 0.f ? 0.f : time_s - previousTime_s;
+    previousTime_s = time_s;
 
     const CameraPose pose = cameraAt(scene.camera, time_s);
-    const float aspect =
-        static_cast<float>(im.draw.width_px()) / static_cast<float>(im.draw.height_px());
+    const float aspect = static_cast<float>(draw.width_px()) / static_cast<float>(draw.height_px());
     const glm::mat4 clipFromView =
         glm::perspective(glm::radians(scene.camera.verticalFov_deg), aspect, scene.camera.near_m,
                          scene.camera.far_m);
@@ -99,70 +98,103 @@ RenderedFrame Renderer::renderFrame(int frameIndex) {
     frame.cameraPosition_time = glm::vec4(pose.position_m, time_s);
     frame.lightDirection = glm::vec4(scene.light.direction, scene.light.intensity);
     frame.viewport_px =
-        glm::vec4(im.draw.width_px(), im.draw.height_px(), scene.camera.near_m, scene.camera.far_m);
+        glm::vec4(draw.width_px(), draw.height_px(), scene.camera.near_m, scene.camera.far_m);
     frame.wind = glm::vec4(scene.wind.direction, scene.wind.waveAmplitude_m_s);
-    glNamedBufferSubData(im.gpu.frame.id(), 0, sizeof frame, &frame);
+    glNamedBufferSubData(gpu.frame.id(), 0, sizeof frame, &frame);
     // World size of one pixel at 1 m: the image height spans 2 tan(fov / 2) at unit distance.
-    const float pixelSize_perM =
-        2.f / (clipFromView[1][1] * static_cast<float>(im.draw.height_px()));
+    const float pixelSize_perM = 2.f / (clipFromView[1][1] * static_cast<float>(draw.height_px()));
 
-    std::array<bool, kStageCount> ran{};
-    auto timed = [&](Stage stage, auto&& work) {
-        glBeginQuery(GL_TIME_ELAPSED, im.timers[stage].id());
-        work();
-        glEndQuery(GL_TIME_ELAPSED);
-        ran[stage] = true;
-    };
-
-    im.gpu.bindAll();
-    im.draw.begin(scene.light.skyColor);
-    timed(kPrepass, [&] {
-        im.draw.depthPrepass(im.gpu);
-        im.draw.resolveDepth();
+    frameTimers.reset();
+    gpu.bindAll();
+    draw.begin(scene.light.skyColor);
+    frameTimers.time(kPrepass, [&] {
+        draw.depthPrepass(gpu);
+        draw.resolveDepth();
     });
-    const PassInputs inputs{scene, im.gpu, frame, im.draw.depthTexture(), time_s, deltaTime_s};
-    if (im.physics && scene.physics.enabled) timed(kPhysics, [&] { im.physics->run(inputs); });
-    if (im.culling)
-        timed(kCulling, [&] { im.culling->run(inputs); });
+    const PassInputs inputs{scene, gpu, frame, draw.depthTexture(), time_s, deltaTime_s};
+    if (physics && scene.physics.enabled) frameTimers.time(kPhysics, [&] { physics->run(inputs); });
+    if (culling)
+        frameTimers.time(kCulling, [&] { culling->run(inputs); });
     else
-        im.gpu.fillTrivialVisibility();
-    im.gpu.bindAll();  // a pass may have bound other buffers
-    timed(kDraw, [&] {
-        im.draw.shadeOpaque(im.gpu, scene);
-        im.draw.drawBlades(im.gpu, scene, pixelSize_perM);
+        gpu.fillTrivialVisibility();
+    gpu.bindAll();  // a pass may have bound other buffers
+    frameTimers.time(kDraw, [&] {
+        draw.shadeOpaque(gpu, scene);
+        draw.drawBlades(gpu, scene, pixelSize_perM);
     });
-    timed(kResolve, [&] { im.draw.resolveColor(); });
+    frameTimers.time(kResolve, [&] { draw.resolveColor(); });
 
+    FrameStats st;
+    st.frame = frameIndex;
+    st.time_s = time_s;
+    st.bladesTotal = gpu.bladeCount;
+    return st;
+}
+
+RenderedFrame Renderer::renderFrame(int frameIndex) {
+    Impl& im = *impl_;
+    const auto start = std::chrono::steady_clock::now();
     RenderedFrame out;
+    out.stats = im.recordFrame(frameIndex, im.timers);
     out.image_bgr = im.draw.readBack();
     gpu::DrawCommandGpu command{};
     gpu::CullStatsGpu culled{};
     glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
     glGetNamedBufferSubData(im.gpu.drawCommand.id(), 0, sizeof command, &command);
     glGetNamedBufferSubData(im.gpu.cullStats.id(), 0, sizeof culled, &culled);
-
-    FrameStats& st = out.stats;
-    st.frame = frameIndex;
-    st.time_s = time_s;
-    st.bladesTotal = im.gpu.bladeCount;
-    st.bladesDrawn = command.vertexCount;
-    st.culledOrientation = culled.culledOrientation;
-    st.culledFrustum = culled.culledFrustum;
-    st.culledDistance = culled.culledDistance;
-    st.culledOcclusion = culled.culledOcclusion;
-    double* gpuTimes[kStageCount] = {&st.gpuPrepass_ms, &st.gpuPhysics_ms, &st.gpuCulling_ms,
-                                     &st.gpuDraw_ms, &st.gpuResolve_ms};
-    for (int s = 0; s < kStageCount; ++s) {
-        if (!ran[s]) continue;
-        GLuint64 elapsed_ns = 0;
-        glGetQueryObjectui64v(im.timers[s].id(), GL_QUERY_RESULT, &elapsed_ns);
-        *gpuTimes[s] = static_cast<double>(elapsed_ns) * kMillisecondsPerNanosecond;
-    }
+    setCounts(out.stats, command, culled);
+    im.timers.readInto(out.stats);
     im.context.checkErrors("rendering frame " + std::to_string(frameIndex) + " of " +
-                           scene.file.string());
-    st.frame_ms =
+                           im.scene.file.string());
+    out.stats.frame_ms =
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
     return out;
+}
+
+void Renderer::renderFrames(int first, int count, bool wantImages,
+                            const std::function<void(RenderedFrame&&)>& onFrame) {
+    if (first < 0 || count < 0)
+        throw std::invalid_argument("Renderer::renderFrames: first (" + std::to_string(first) +
+                                    ") and count (" + std::to_string(count) +
+                                    ") must not be negative");
+    Impl& im = *impl_;
+    FrameSlots& slots = im.slots;
+    slots.clear();  // an earlier call that threw may have left frames behind
+    // The renderer's own clock: wall time since the call began, time spent in onFrame left out.
+    const auto start = std::chrono::steady_clock::now();
+    double inCallback_ms = 0.0;
+    auto now_ms = [&] {
+        return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
+                   .count() -
+               inCallback_ms;
+    };
+    auto deliverOldest = [&] {
+        const FrameSlot& oldest = slots.waitOldest();
+        const double submitted_ms = oldest.submitted_ms;
+        const bool hasSuccessor = slots.pendingCount() > 1;
+        const double successor_ms = hasSuccessor ? slots.secondOldestSubmitted_ms() : 0.0;
+        RenderedFrame frame = slots.takeOldest();
+        frame.stats.frame_ms = (hasSuccessor ? successor_ms : now_ms()) - submitted_ms;
+        im.context.checkErrors("collecting frame " + std::to_string(frame.stats.frame) + " of " +
+                               im.scene.file.string());
+        const auto callbackStart = std::chrono::steady_clock::now();
+        onFrame(std::move(frame));
+        inCallback_ms += std::chrono::duration<double, std::milli>(
+                             std::chrono::steady_clock::now() - callbackStart)
+                             .count();
+    };
+    for (int k = 0; k < count; ++k) {
+        FrameSlot& slot = slots.next();
+        slot.submitted_ms = now_ms();
+        slot.stats = im.recordFrame(first + k, slot.timers);
+        slots.submit(im.gpu.drawCommand, im.gpu.cullStats, wantImages ? &im.draw : nullptr);
+        im.context.checkErrors("rendering frame " + std::to_string(first + k) + " of " +
+                               im.scene.file.string());
+        // With every slot pending, the oldest frame was submitted kFramesInFlight - 1 frames ago:
+        // the GPU still has the newer ones queued while the CPU waits for it.
+        if (slots.full()) deliverOldest();
+    }
+    while (slots.pendingCount() > 0) deliverOldest();
 }
 
 }  // namespace meadow::runtime

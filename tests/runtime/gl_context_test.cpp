@@ -60,6 +60,32 @@ TEST(GlObjectGLTest, MoveTransfersOwnershipAndLeavesZero) {
     context.checkErrors("GlObject moves");
 }
 
+TEST(GlObjectGLTest, SyncMovesLikeTheOtherOwnersAndItsFenceSignals) {
+    static_assert(!std::is_copy_constructible_v<gl::Sync>);
+    static_assert(!std::is_copy_assignable_v<gl::Sync>);
+    static_assert(std::is_nothrow_move_constructible_v<gl::Sync>);
+    static_assert(std::is_nothrow_move_assignable_v<gl::Sync>);
+    GlContext context;
+    gl::Sync a = gl::Sync::fence();
+    const GLsync fence = a.get();
+    ASSERT_NE(fence, nullptr);
+    EXPECT_TRUE(glIsSync(fence));
+    gl::Sync b(std::move(a));
+    EXPECT_EQ(a.get(),
+              nullptr);  // NOLINT(bugprone-use-after-move): the moved-from state is the point
+    EXPECT_EQ(b.get(), fence);
+    const GLenum status = glClientWaitSync(b.get(), GL_SYNC_FLUSH_COMMANDS_BIT, 10'000'000'000ull);
+    EXPECT_TRUE(status == GL_ALREADY_SIGNALED || status == GL_CONDITION_SATISFIED) << status;
+    { gl::Sync scoped = std::move(b); }
+    EXPECT_FALSE(glIsSync(fence)) << "the destructor of the last owner deletes the fence";
+    gl::Sync c = gl::Sync::fence();
+    const GLsync released = c.release();
+    EXPECT_EQ(c.get(), nullptr);
+    EXPECT_TRUE(glIsSync(released));
+    glDeleteSync(released);
+    context.checkErrors("Sync moves");
+}
+
 TEST(ShaderProgramGLTest, AssemblesVersionDefinesSharedTypesAndLineDirectives) {
     gl::ProgramSource source{.label = "test",
                              .stages = {{GL_COMPUTE_SHADER, "shared/blade_types.h"}},

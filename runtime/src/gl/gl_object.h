@@ -106,4 +106,34 @@ using Query = GlObject<QueryTraits>;
 using Shader = GlObject<ShaderTraits>;
 using Program = GlObject<ProgramTraits>;
 
+// A fence (glFenceSync). GLsync is a pointer, not a GLuint name, so it has its own owner with
+// the same rules: move-only, a moved-from Sync holds 0 (null), the destructor deletes it.
+class Sync {
+public:
+    Sync() noexcept = default;
+    explicit Sync(GLsync sync) noexcept : sync_(sync) {}
+    Sync(const Sync&) = delete;
+    Sync& operator=(const Sync&) = delete;
+    Sync(Sync&& o) noexcept : sync_(std::exchange(o.sync_, nullptr)) {}
+    Sync& operator=(Sync&& o) noexcept {
+        std::swap(sync_, o.sync_);
+        return *this;
+    }
+    ~Sync() {
+        if (sync_) glDeleteSync(sync_);
+    }
+
+    // A fence after every command issued so far; it signals when they have all completed.
+    [[nodiscard]] static Sync fence() {
+        return Sync(glFenceSync(GL_SYNC_GPU_COMMANDS_COMPLETE, 0));
+    }
+
+    [[nodiscard]] GLsync get() const noexcept { return sync_; }
+    explicit operator bool() const noexcept { return sync_ != nullptr; }
+    [[nodiscard]] GLsync release() noexcept { return std::exchange(sync_, nullptr); }
+
+private:
+    GLsync sync_ = nullptr;
+};
+
 }  // namespace meadow::runtime::gl

@@ -2,6 +2,7 @@
 // Renders a scene frame by frame: depth pre-pass of the opaque meshes -> physics (compute) ->
 // culling (compute, writes the indirect draw) -> opaque shading -> tessellated blades -> MSAA
 // resolve -> read-back. GPU timer queries time each stage.
+#include <functional>
 #include <memory>
 #include <opencv2/core/mat.hpp>
 
@@ -29,7 +30,21 @@ public:
 
     // Frame i shows simulated time i / render.frame_rate_hz; frames must be rendered in order
     // for the physics to integrate (the blades' state lives on the GPU).
+    // Synchronous: returns once the frame is on the CPU (image, counts, GPU times), so the CPU
+    // waits for the GPU every frame. frame_ms: wall time of the call, read-back included.
     RenderedFrame renderFrame(int frameIndex);
+
+    // Pipelined: renders frames first .. first + count - 1 (count >= 0) and hands each to
+    // onFrame, in order, with the same images and stats renderFrame would give. Up to three
+    // frames are on the GPU at once; frame k is collected (its fence waited for, its copies
+    // mapped) only after frame k + 2 has been submitted, and the last ones when the call drains,
+    // so the CPU never waits on the frame it has just submitted. image_bgr stays empty unless
+    // wantImages. frame_ms: the renderer's wall time from the start of this frame's submission
+    // to the start of the next one's (for the last frame of the call, to its collection), time
+    // spent in onFrame left out; the frame_ms of a call add up to its wall time minus onFrame.
+    // If onFrame throws, the frames still in flight are dropped.
+    void renderFrames(int first, int count, bool wantImages,
+                      const std::function<void(RenderedFrame&&)>& onFrame);
 
     [[nodiscard]] std::size_t bladeCount() const;
     [[nodiscard]] std::size_t patchCount() const;
