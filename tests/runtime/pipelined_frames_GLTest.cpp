@@ -25,6 +25,16 @@ SceneDescription windyScene(const std::string& name) {
               {"colliders", {{{"center_m", {0.1, 0.05, 0.0}}, {"radius_m", 0.15}}}}}));
 }
 
+// The windy scene with the renderer's own physics and culling passes, as `meadow render` runs it.
+struct WindyRenderer {
+    explicit WindyRenderer(const std::string& name) : renderer(context, windyScene(name)) {
+        installPhysicsPass(renderer, context);
+        installCullingPass(renderer, context);
+    }
+    GlContext context;
+    Renderer renderer;
+};
+
 bool sameBytes(const cv::Mat& a, const cv::Mat& b) {
     return a.type() == b.type() && a.size() == b.size() && a.isContinuous() && b.isContinuous() &&
            std::memcmp(a.data, b.data, a.total() * a.elemSize()) == 0;
@@ -77,11 +87,8 @@ TEST(PipelinedFramesGLTest, ImagesAndCountsEqualTheSynchronousPathFrameByFrameIn
 }
 
 TEST(PipelinedFramesGLTest, NoFramesDeliversNothingAndWithoutImagesStatsStillArrive) {
-    const SceneDescription scene = windyScene("pipelined_frames_no_images");
-    GlContext context;
-    Renderer renderer(context, scene);
-    installPhysicsPass(renderer, context);
-    installCullingPass(renderer, context);
+    WindyRenderer windy("pipelined_frames_no_images");
+    Renderer& renderer = windy.renderer;
     EXPECT_TRUE(renderPipelined(renderer, 0, 0, true).empty());
     EXPECT_TRUE(renderPipelined(renderer, 0, 0, false).empty());
     // Fewer frames than the ring holds, then a second call that continues the simulation.
@@ -106,11 +113,8 @@ TEST(PipelinedFramesGLTest, NoFramesDeliversNothingAndWithoutImagesStatsStillArr
 }
 
 TEST(PipelinedFramesGLTest, ACallbackThatThrowsDropsTheFramesInFlightAndTheNextCallStartsClean) {
-    const SceneDescription scene = windyScene("pipelined_frames_throw");
-    GlContext context;
-    Renderer renderer(context, scene);
-    installPhysicsPass(renderer, context);
-    installCullingPass(renderer, context);
+    WindyRenderer windy("pipelined_frames_throw");
+    Renderer& renderer = windy.renderer;
     struct Stop {};
     EXPECT_THROW(renderer.renderFrames(0, 6, true, [](RenderedFrame&&) { throw Stop{}; }), Stop);
     const std::vector<RenderedFrame> frames = renderPipelined(renderer, 6, 4, true);
