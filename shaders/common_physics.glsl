@@ -87,8 +87,9 @@ vec3 totalGravity(vec3 gE, vec3 gF) { return gE + gF; }
 vec3 windDirectionalWave(PhysicsParamsGpu p, vec3 v0) {
     vec3 direction = safeNormalize(vec3(p.windWave));
     float wavelength_m = max(p.windShape.x, kDirectionEpsilon_m);
-    float period_s = max(p.windShape.y, kDirectionEpsilon_m);
-    float phase = 2.0f * kPhysicsPi * (dot(direction, v0) / wavelength_m - p.gravityMix_dt.w / period_s);
+    // Frequency, not period: 0 Hz is a wave that stands still (a steady breeze in its pattern).
+    float frequency_hz = max(p.windShape.y, 0.0f);
+    float phase = 2.0f * kPhysicsPi * (dot(direction, v0) / wavelength_m - p.gravityMix_dt.w * frequency_hz);
     return direction * p.windWave.w * (0.5f + 0.5f * sin(phase));
 }
 
@@ -98,10 +99,10 @@ vec3 windPointSource(PhysicsParamsGpu p, vec3 v0) {
     vec3 fromSource = v0 - vec3(p.windSource);
     float distance_m = length(fromSource);
     float wavelength_m = max(p.windShape.x, kDirectionEpsilon_m);
-    float period_s = max(p.windShape.y, kDirectionEpsilon_m);
+    float frequency_hz = max(p.windShape.y, 0.0f);
     float radius_m = max(p.windShape.z, kDirectionEpsilon_m);
     float falloff = max(1.0f - distance_m / radius_m, 0.0f);
-    float phase = 2.0f * kPhysicsPi * (distance_m / wavelength_m - p.gravityMix_dt.w / period_s);
+    float phase = 2.0f * kPhysicsPi * (distance_m / wavelength_m - p.gravityMix_dt.w * frequency_hz);
     return safeNormalize(fromSource) * p.windSource.w * falloff * (0.5f + 0.5f * sin(phase));
 }
 

@@ -22,7 +22,7 @@ PhysicsSettings physicsSettingsOf(const SceneDescription& scene, const gpu::Fram
     s.windDirection = glm::vec3(frame.wind);
     s.windWave_mps = frame.wind.w;
     s.windWavelength_m = scene.wind.wavelength_m;
-    if (scene.wind.frequency_hz > 0.f) s.windPeriod_s = 1.f / scene.wind.frequency_hz;
+    s.windFrequency_hz = scene.wind.frequency_hz;
     s.windSource_m = scene.wind.source_m;
     s.windSource_mps = scene.wind.sourceAmplitude_m_s;
     s.windSourceRadius_m = scene.wind.sourceRadius_m;

@@ -158,6 +158,34 @@ TEST(PhysicsReference, WindBlowingAlongTheBladeMovesNothing) {
     EXPECT_LT(glm::distance(glm::vec3(m.blades[0].v2_stiffness), v0 + h * up), 1e-5f);
 }
 
+// Wind frequency 0 Hz is a wave that stands still: the blade settles under a steady push and
+// stays; at 0.5 Hz the same wave keeps moving it.
+TEST(PhysicsReference, WindAtZeroFrequencyStandsStillAndAtHalfAHertzKeepsMoving) {
+    const float h = 0.4f;
+    auto tipDriftOverAQuarterSecond = [&](float frequency_hz) {
+        testing::TestMeadow m;
+        const glm::vec3 up{0.f, 1.f, 0.f}, top = h * up;
+        m.blades.push_back({glm::vec4(0.f, 0.f, 0.f, h), glm::vec4(top, 0.01f), glm::vec4(top, 5.f),
+                            glm::vec4(up, 0.f)});
+        m.rests.push_back({glm::vec4(top, 0.f), glm::vec4(top, 0.f)});
+        PhysicsSettings s = testing::calmSettings();
+        s.windDirection = {0.f, 0.f, 1.f};  // across the blade
+        s.windWave_mps = 1.f;
+        s.windFrequency_hz = frequency_hz;
+        const std::uint32_t settled = 600, later = settled + 15;  // 10 s, then 0.25 s more
+        std::uint32_t f = 0;
+        for (; f < settled; ++f) step(m, s, f);
+        const glm::vec3 before = glm::vec3(m.blades[0].v2_stiffness);
+        for (; f < later; ++f) step(m, s, f);
+        return glm::distance(glm::vec3(m.blades[0].v2_stiffness), before);
+    };
+    const float still = tipDriftOverAQuarterSecond(0.f), moving = tipDriftOverAQuarterSecond(0.5f);
+    std::cout << "tip drift over 0.25 s after 10 s of wind: 0 Hz " << still / h << " h, 0.5 Hz "
+              << moving / h << " h\n";
+    EXPECT_LT(still, 1e-4f * h);
+    EXPECT_GT(moving, 100.f * still + 1e-3f * h);
+}
+
 // Eq. (3) with t > 0: a gravity centre beside the blade pulls its tip toward the centre. The blade
 // stands straight at the origin with its width along +X, so front gravity (Eq. (4)) pushes along
 // +Z only and any x movement of the tip comes from the centre.

@@ -45,7 +45,7 @@ TEST(ScenePhysics, WindAndGravityFieldsParseIntoThePhysicsSettings) {
     EXPECT_EQ(s.windDirection, glm::vec3(0, 0, 1));
     EXPECT_FLOAT_EQ(s.windWave_mps, 3.5f);
     EXPECT_FLOAT_EQ(s.windWavelength_m, 7.f);
-    EXPECT_FLOAT_EQ(s.windPeriod_s, 4.f);
+    EXPECT_FLOAT_EQ(s.windFrequency_hz, 0.25f);
     EXPECT_EQ(s.windSource_m, glm::vec3(1, 2, 3));
     EXPECT_FLOAT_EQ(s.windSource_mps, 6.f);
     EXPECT_FLOAT_EQ(s.windSourceRadius_m, 9.f);

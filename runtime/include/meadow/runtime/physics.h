@@ -24,7 +24,7 @@ struct PhysicsSettings {
     glm::vec3 windSource_m{0.f, 0.f, 0.f};
     float windSource_mps = 0.f;
     float windWavelength_m = 4.f;
-    float windPeriod_s = 2.f;
+    float windFrequency_hz = 0.5f;  // the waves' and rings' frequency; 0: a wave that stands still
     float windSourceRadius_m = 5.f;
 
     // Collisions, Sec. 5.1: the collision strength eta decays by etaDecay_per_s each second, grows
