@@ -17,12 +17,24 @@ cv::Point texelAt(const GroundImage& extent, cv::Size size, glm::vec3 p_m) {
     return {col, row};
 }
 
+namespace {
+cv::Mat readDensityImage(const DensityMap& map) {
+    return cv::imread(map.image.string(), cv::IMREAD_GRAYSCALE | cv::IMREAD_ANYDEPTH);
+}
+std::string unreadableDensityMap(const DensityMap& map) {
+    return "density map " + map.image.string() +
+           " is not a readable image; give an 8- or 16-bit grey PNG";
+}
+}  // namespace
+
+std::string densityMapProblem(const DensityMap& map) {
+    return readDensityImage(map).empty() ? unreadableDensityMap(map) : std::string();
+}
+
 cv::Mat loadDensityMap(const DensityMap& map) {
-    const cv::Mat image =
-        cv::imread(map.image.string(), cv::IMREAD_GRAYSCALE | cv::IMREAD_ANYDEPTH);
+    const cv::Mat image = readDensityImage(map);
     if (image.empty())
-        throw RuntimeError("meadow::runtime::loadScene: density map " + map.image.string() +
-                           " is not a readable image; give an 8- or 16-bit grey PNG");
+        throw RuntimeError("meadow::runtime::loadScene: " + unreadableDensityMap(map));
     cv::Mat density;
     image.convertTo(density, CV_32F, image.depth() == CV_16U ? 1.0 / 65535.0 : 1.0 / 255.0);
     return density;

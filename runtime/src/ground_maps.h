@@ -21,6 +21,8 @@ cv::Point texelAt(const GroundImage& extent, cv::Size size, glm::vec3 p_m);
 
 // CV_32F in [0, 1] from an 8- or 16-bit grey image. Throws RuntimeError when unreadable.
 cv::Mat loadDensityMap(const DensityMap& map);
+// Empty when the density map's image reads, else one line naming it and what to do.
+std::string densityMapProblem(const DensityMap& map);
 
 struct ArchetypeMapImage {
     cv::Mat indices;      // CV_8UC1; empty when `problem` is set

@@ -246,8 +246,13 @@ SceneDescription parseSceneDescription(const std::string& jsonText, const fs::pa
     s.stiffness = r.range(b, "stiffness", "blades", s.stiffness, 0.f, 100.f);
     s.seed = static_cast<std::uint32_t>(
         r.integer(b, "seed", "blades", static_cast<int>(s.seed), 0, 2147483647));
-    if (b.contains("density_map"))
+    if (b.contains("density_map")) {
         s.densityMap = readGroundImage(r, b.at("density_map"), "blades.density_map");
+        // Read on load as well as when seeding, as archetypes.map is: a bad image fails before
+        // any GL context exists, with the scene file and the field in the message.
+        if (const std::string why = densityMapProblem(*s.densityMap); !why.empty())
+            r.fail("blades.density_map.image", why);
+    }
 
     const json& c = root.value("camera", empty);
     r.onlyKeys(c, "camera",

@@ -3,11 +3,13 @@
 // frequencies.
 #include <gtest/gtest.h>
 
+#include <fstream>
 #include <glm/geometric.hpp>
 #include <iostream>
 #include <opencv2/imgcodecs.hpp>
 
 #include "../../runtime/src/scene_gpu.h"
+#include "meadow/runtime/error.h"
 #include "meadow/runtime/scene.h"
 #include "scene_test_helpers.h"
 
@@ -52,6 +54,30 @@ TEST(SeedingDensityMap, GreyLevelsBecomeBladesPerAreaBlackGrowsNone) {
     EXPECT_NEAR(grey_per_m2 / white_per_m2, 128.0 / 255.0, 0.05);
     // The map thins the field, it does not move blades elsewhere: white keeps the scene density.
     EXPECT_NEAR(white_per_m2, kDensity_per_m2, 0.05 * kDensity_per_m2);
+}
+
+// A density map that is not an image fails when the scene loads (before any GL context), with
+// the scene file, the field and the image in one line, as a bad archetype map does.
+TEST(SeedingDensityMap, UnreadableMapFailsOnLoadNamingSceneFieldAndImage) {
+    const auto dir = test::freshTestDirectory("density_map_unreadable");
+    test::writeQuad(dir / "ground.gltf", 0.f, 1.f, 0.f, 1.f);
+    std::ofstream(dir / "density.png") << "not an image";
+    const nlohmann::json extra = {
+        {"blades",
+         {{"density_map",
+           {{"image", "density.png"}, {"min_xz_m", {0, 0}}, {"max_xz_m", {1, 1}}}}}}};
+    const auto scene = test::writeScene(dir, test::minimalScene("ground.gltf", extra));
+    try {
+        (void)loadSceneDescription(scene);
+        FAIL() << "an unreadable density map was accepted";
+    } catch (const RuntimeError& e) {
+        const std::string message = e.what();
+        for (const std::string& part :
+             {scene.string(), std::string("blades.density_map.image"), std::string("density.png"),
+              std::string("not a readable image")})
+            EXPECT_NE(message.find(part), std::string::npos) << part << " missing in: " << message;
+        EXPECT_EQ(message.find('\n'), std::string::npos) << "one line: " << message;
+    }
 }
 
 TEST(SeedingTufts, TuftCentresAreAtLeastThePoissonDiskSpacingApart) {
