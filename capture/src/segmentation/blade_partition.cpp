@@ -244,9 +244,7 @@ std::vector<BladeContour> partitionCluster(BladeCluster& cluster, const cv::Mat1
         // The transform runs over the part of the box that holds every such nearest point.
         // Its chamfer metric departs from the Euclidean by a few percent, hence the margin.
         const int grow = reach + reach / kChamferMarginDivisor + 2;
-        const cv::Rect sub =
-            cv::Rect(left.x - grow, left.y - grow, left.width + 2 * grow, left.height + 2 * grow) &
-            cv::Rect({0, 0}, box.size());
+        const cv::Rect sub = grownWithin(left, grow, cv::Rect({0, 0}, box.size()));
         cv::Mat1b seeds(sub.size(), std::uint8_t{255});
         cv::Mat1i seedBlade(sub.size(), 0);
         for (size_t k = 0; k < pieces.size(); ++k)

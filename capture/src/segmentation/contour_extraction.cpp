@@ -15,13 +15,13 @@ namespace {
 constexpr float kRadialDepthFraction = 0.3f;
 }  // namespace
 
-std::vector<BladeCluster> extractClusters(const cv::Mat1b& mask, const cv::Rect& searched,
+std::vector<BladeCluster> extractClusters(const cv::Mat1b& mask, const cv::Rect& region,
                                           const SegmenterParams& params, StageReport& report) {
     std::vector<std::vector<cv::Point>> contours;
     std::vector<cv::Vec4i> hierarchy;
-    if (!searched.empty())
-        cv::findContours(mask(searched).clone(), contours, hierarchy, cv::RETR_CCOMP,
-                         cv::CHAIN_APPROX_NONE, searched.tl());
+    if (!region.empty())
+        cv::findContours(mask(region).clone(), contours, hierarchy, cv::RETR_CCOMP,
+                         cv::CHAIN_APPROX_NONE, region.tl());
     std::vector<BladeCluster> clusters;
     int tooSmall = 0;
     for (size_t i = 0; i < contours.size(); ++i) {

@@ -17,9 +17,7 @@ cv::Rect cleanUpRegion(const cv::Mat1b& mask, const SegmenterParams& params) {
     // dilation reach 2 px; one more pixel keeps a background ring around everything.
     const int reach_px = params.closeKernel_px / 2 + params.openKernel_px / 2 +
                          static_cast<int>(std::ceil(3.f * params.edgeSmoothingSigma_px)) + 2 + 1;
-    const cv::Rect grown(box.x - reach_px, box.y - reach_px, box.width + 2 * reach_px,
-                         box.height + 2 * reach_px);
-    return grown & cv::Rect(0, 0, mask.cols, mask.rows);
+    return grownWithin(box, reach_px, cv::Rect(0, 0, mask.cols, mask.rows));
 }
 
 void cleanUpMask(const SegmenterParams& params, cv::Mat1b& mask, StageReport& report) {

@@ -26,9 +26,7 @@ int organizedNeighbourhood(const cv::Mat1w& depth_mm, const SegmenterParams& par
     // Only the masked part of the frame can change; the window reads r px around it.
     const cv::Rect box = cv::boundingRect(mask);
     if (box.empty()) return 0;
-    const cv::Rect frame(0, 0, mask.cols, mask.rows);
-    const cv::Rect window =
-        cv::Rect(box.x - r, box.y - r, box.width + 2 * r, box.height + 2 * r) & frame;
+    const cv::Rect window = grownWithin(box, r, cv::Rect(0, 0, mask.cols, mask.rows));
     const cv::Mat1b in = mask(window).clone();
     const cv::Mat1w depth = depth_mm(window);
     int dropped = 0;

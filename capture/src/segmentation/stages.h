@@ -13,6 +13,14 @@ namespace meadow::capture::segmentation {
 
 inline constexpr float kMillimetresPerMetre = 1000.0f;
 
+// `rect` grown by `by_px` on every side, clipped to `within`: the part of an image a filter of
+// that reach can read or write around `rect`.
+inline cv::Rect grownWithin(const cv::Rect& rect, int by_px, const cv::Rect& within) {
+    return cv::Rect(rect.x - by_px, rect.y - by_px, rect.width + 2 * by_px,
+                    rect.height + 2 * by_px) &
+           within;
+}
+
 // temporal_fusion.cpp: per-pixel median of the non-zero readings; pixels valid in fewer than
 // minValidFrameFraction of the frames read 0.
 cv::Mat1w fuseFrames(std::span<const DepthFrame> frames, float minValidFrameFraction,

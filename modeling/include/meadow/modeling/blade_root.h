@@ -32,16 +32,16 @@ struct RootParams {
     // The base point is the centroid of the cluster's lowest rows, and the plane removal clears
     // what lies within its tolerance of the ground, so the lowest visible part of a tuft sits a
     // few millimetres above its root (measured 3.3-4.8 mm on the leaf presets, up to 20 mm).
-    // With a ground plane from the segmentation, a base at most maxGroundDrop_m above it is
-    // moved down onto it along its normal: a tuft grows from the ground.
-    bool dropToGround = true;
-    // Without a ground plane, the base moves down to the cluster's lowest pixel under it.
+    // toLowestRow: the base moves down to the cluster's lowest pixel under it. dropToGround:
+    // then, with a ground plane from the segmentation at most maxGroundDrop_m below, it moves
+    // onto that plane along its normal: a tuft grows from the ground.
     bool toLowestRow = true;
+    bool dropToGround = true;
     float maxGroundDrop_m = 0.04f;
 };
 
 struct ClusterBase {
-    glm::vec2 base_px{0.f};  // capture::BladeCluster::basePoint_px
+    glm::vec2 base_px{0.f};  // BladeCluster::basePoint_px, on the lowest row with toLowestRow
     float depth_m = 0.f;     // median of the cluster's valid readings near it
     glm::vec3 base_m{0.f};   // back-projected, camera space; on the ground when dropped
     int depthReadings = 0;
