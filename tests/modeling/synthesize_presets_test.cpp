@@ -12,7 +12,7 @@
 #include "meadow/capture/simulated_sensor.h"
 #include "meadow/modeling/synthesize.h"
 #include "meadow/modeling/synthetic_tuft.h"
-#include "ray_mesh.h"
+#include "truth_oracles.h"
 
 namespace meadow::modeling {
 namespace {
@@ -30,15 +30,6 @@ constexpr int kMinCheckedPixels = 40;  // fewer judge nothing
 // Lateral noise displaces a reading by N(0, lateral_px) in x and y; 3 sigma bounds its reach.
 constexpr float kLateralReachSigmas = 3.f;
 
-// Every pixel of the (2r+1)^2 window around (u, v) carries the same label.
-bool interior(const cv::Mat1w& labels, int u, int v, int r) {
-    if (u < r || v < r || u >= labels.cols - r || v >= labels.rows - r) return false;
-    for (int dv = -r; dv <= r; ++dv)
-        for (int du = -r; du <= r; ++du)
-            if (labels(v + dv, u + du) != labels(v, u)) return false;
-    return true;
-}
-
 struct Agreement {
     int checked = 0, within = 0;
     float worstError_mm = 0.f;
@@ -55,7 +46,7 @@ Agreement depthAgreesWithMeshes(const cv::Mat1w& depth_mm, const cv::Mat1w& labe
     for (int v = 0; v < labels.rows; ++v)
         for (int u = 0; u < labels.cols; ++u) {
             const int id = labels(v, u);
-            if (id == 0 || depth_mm(v, u) == 0 || !interior(labels, u, v, radius)) continue;
+            if (id == 0 || depth_mm(v, u) == 0 || !test::interior(labels, u, v, radius)) continue;
             if (id > static_cast<int>(meshes.size())) continue;  // counted by the id check
             const test::RayHit hit = test::rayHit(meshes[static_cast<size_t>(id - 1)], k, u, v);
             ++a.checked;

@@ -15,9 +15,10 @@
 #include "meadow/capture/simulated_sensor.h"
 #include "meadow/modeling/error.h"
 #include "meadow/modeling/synthesize.h"
-#include "ray_mesh.h"
+#include "truth_oracles.h"
 
 using namespace meadow::modeling;
+using meadow::modeling::test::interior;
 using meadow::modeling::test::rayDepth_m;
 namespace capture = meadow::capture;
 namespace fs = std::filesystem;
@@ -36,16 +37,6 @@ SyntheticTuft presetFrame(const std::string& name, int frame = 0, bool scenery =
     TuftSpec spec = buildPresetSpec(*preset, {});
     spec.scenery = scenery;
     return buildTuft(spec, frame);
-}
-
-// Every pixel of the 5 x 5 window around (u, v) carries the same label: no silhouette near.
-bool interior(const cv::Mat1w& labels, int u, int v, int radius = 2) {
-    if (u < radius || v < radius || u >= labels.cols - radius || v >= labels.rows - radius)
-        return false;
-    for (int dv = -radius; dv <= radius; ++dv)
-        for (int du = -radius; du <= radius; ++du)
-            if (labels(v + dv, u + du) != labels(v, u)) return false;
-    return true;
 }
 
 }  // namespace
@@ -127,7 +118,8 @@ TEST(SyntheticTuft, LabelledPixelsCarryTheTruthMeshDepthWithinTheNoiseModel) {
     for (int v = 0; v < k.height_px; ++v)
         for (int u = 0; u < k.width_px; ++u) {
             const int id = frame.labels(v, u);
-            if (id == 0 || !interior(frame.labels, u, v) || frame.depth_mm(v, u) == 0) continue;
+            if (id == 0 || !interior(frame.labels, u, v, /*radius=*/2) || frame.depth_mm(v, u) == 0)
+                continue;
             ASSERT_LE(id, static_cast<int>(truthMeshes.size()));
             const float exact_m = rayDepth_m(truthMeshes[id - 1], k, u, v);
             ASSERT_TRUE(std::isfinite(exact_m)) << "pixel " << u << "," << v << " labelled " << id

@@ -1,10 +1,12 @@
 #pragma once
-// Test oracle: where a camera ray through a pixel first meets a triangle mesh (camera space),
-// by brute force over every triangle. Möller & Trumbore 1997, "Fast, minimum storage
-// ray-triangle intersection".
+// Test oracles against the simulated sensor's truth: where a camera ray through a pixel first
+// meets a triangle mesh (camera space), by brute force over every triangle (Möller & Trumbore
+// 1997, "Fast, minimum storage ray-triangle intersection"), and which pixels of a label image
+// lie away from any silhouette.
 #include <cmath>
 #include <glm/geometric.hpp>
 #include <limits>
+#include <opencv2/core/mat.hpp>
 
 #include "meadow/capture/intrinsics.h"
 #include "meadow/modeling/blade_mesh.h"
@@ -44,6 +46,17 @@ inline RayHit rayHit(const TriangleMesh& mesh, const capture::Intrinsics& k, int
 // Depth (camera z, m) where the ray through pixel (u, v) first meets the mesh, or +inf.
 inline float rayDepth_m(const TriangleMesh& mesh, const capture::Intrinsics& k, int u, int v) {
     return rayHit(mesh, k, u, v).depth_m;
+}
+
+// Every pixel of the (2 radius + 1)^2 window around (u, v) carries the label of (u, v): no
+// silhouette within `radius` (radius 0: always true inside the image).
+inline bool interior(const cv::Mat1w& labels, int u, int v, int radius) {
+    if (u < radius || v < radius || u >= labels.cols - radius || v >= labels.rows - radius)
+        return false;
+    for (int dv = -radius; dv <= radius; ++dv)
+        for (int du = -radius; du <= radius; ++du)
+            if (labels(v + dv, u + du) != labels(v, u)) return false;
+    return true;
 }
 
 }  // namespace meadow::modeling::test

@@ -158,16 +158,22 @@ TEST(PhysicsReference, WindBlowingAlongTheBladeMovesNothing) {
     EXPECT_LT(glm::distance(glm::vec3(m.blades[0].v2_stiffness), v0 + h * up), 1e-5f);
 }
 
+// One straight blade h tall at the origin, up +Y, its width along +X, at rest, stiffness 5.
+testing::TestMeadow straightBladeAtOrigin(float h) {
+    testing::TestMeadow m;
+    const glm::vec3 up{0.f, 1.f, 0.f}, top = h * up;
+    m.blades.push_back({glm::vec4(0.f, 0.f, 0.f, h), glm::vec4(top, 0.01f), glm::vec4(top, 5.f),
+                        glm::vec4(up, 0.f)});
+    m.rests.push_back({glm::vec4(top, 0.f), glm::vec4(top, 0.f)});
+    return m;
+}
+
 // Wind frequency 0 Hz is a wave that stands still: the blade settles under a steady push and
 // stays; at 0.5 Hz the same wave keeps moving it.
 TEST(PhysicsReference, WindAtZeroFrequencyStandsStillAndAtHalfAHertzKeepsMoving) {
     const float h = 0.4f;
     auto tipDriftOverAQuarterSecond = [&](float frequency_hz) {
-        testing::TestMeadow m;
-        const glm::vec3 up{0.f, 1.f, 0.f}, top = h * up;
-        m.blades.push_back({glm::vec4(0.f, 0.f, 0.f, h), glm::vec4(top, 0.01f), glm::vec4(top, 5.f),
-                            glm::vec4(up, 0.f)});
-        m.rests.push_back({glm::vec4(top, 0.f), glm::vec4(top, 0.f)});
+        testing::TestMeadow m = straightBladeAtOrigin(h);
         PhysicsSettings s = testing::calmSettings();
         s.windDirection = {0.f, 0.f, 1.f};  // across the blade
         s.windWave_mps = 1.f;
@@ -192,17 +198,13 @@ TEST(PhysicsReference, WindAtZeroFrequencyStandsStillAndAtHalfAHertzKeepsMoving)
 TEST(PhysicsReference, GravityCentreMixPullsTheTipTowardTheCentre) {
     const float h = 0.4f;
     auto tipAfterOneSecond = [&](glm::vec3 centre_m, float t) {
-        testing::TestMeadow m;
-        const glm::vec3 up{0.f, 1.f, 0.f}, top = h * up;
-        m.blades.push_back({glm::vec4(0.f, 0.f, 0.f, h), glm::vec4(top, 0.01f), glm::vec4(top, 5.f),
-                            glm::vec4(up, 0.f)});
-        m.rests.push_back({glm::vec4(top, 0.f), glm::vec4(top, 0.f)});
+        testing::TestMeadow m = straightBladeAtOrigin(h);
         PhysicsSettings s = testing::calmSettings();
         s.gravityCenter_m = centre_m;
         s.gravityCenter_mps2 = 9.81f;
         s.gravityCenterMix = t;
         for (std::uint32_t f = 0; f < 60; ++f) step(m, s, f);
-        return glm::vec3(m.blades[0].v2_stiffness) - top;  // tip displacement from rest
+        return glm::vec3(m.blades[0].v2_stiffness) - glm::vec3(0.f, h, 0.f);  // from rest
     };
     const glm::vec3 centre_m{2.f, 0.2f, 0.f};
     const glm::vec3 none = tipAfterOneSecond(centre_m, 0.f);
