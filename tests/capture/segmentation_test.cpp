@@ -195,7 +195,8 @@ TEST(Segmenter, EveryStageReportsWhatItDropped) {
         EXPECT_GE(r.time_ms, 0.0);
     }
     const std::vector<std::string> expected{"plane removal", "depth band", "outlier removal",
-                                            "clean-up",      "contours",   "partition"};
+                                            "clean-up",      "tip trails", "contours",
+                                            "partition"};
     EXPECT_EQ(stages, expected);
     const auto outliers = std::find_if(s.report.begin(), s.report.end(),
                                        [](const auto& r) { return r.stage == "outlier removal"; });

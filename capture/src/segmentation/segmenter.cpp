@@ -80,6 +80,7 @@ std::string SegmenterParams::problem() const {
         {"baseBandFraction", baseBandFraction, 0.f, 1.f},
         {"smoothingSigma_px", smoothingSigma_px, 0.f, 1000.f},
         {"edgeSmoothingSigma_px", edgeSmoothingSigma_px, 0.f, 20.f},
+        {"tipTrailMinReach_px", tipTrailMinReach_px, 0.f, 1000.f},
         {"minPersistence_px", minPersistence_px, 0.f, 1e5f},
         {"minPersistenceFraction", minPersistenceFraction, 0.f, 1.f},
         {"minResolvableWidth_px", minResolvableWidth_px, 0.f, 1000.f},
@@ -113,6 +114,8 @@ std::string SegmenterParams::problem() const {
         {"minRegionArea_px", minRegionArea_px, 0, 1 << 28},
         {"maxHoleArea_px", maxHoleArea_px, 0, 1 << 28},
         {"minBladeContour_px", minBladeContour_px, 3, 1 << 20},
+        {"tipTrailGap_px", tipTrailGap_px, 1, 16},
+        {"tipTrailMaxLength_px", tipTrailMaxLength_px, 0, 4096},
     };
     for (const auto& r : ints)
         if (r.value < r.lo || r.value > r.hi)
@@ -220,23 +223,40 @@ struct Segmenter::Impl {
             out.clusterMask = cv::Mat1b::zeros(depth_mm.size());
             return out;
         }
+        if (cv::countNonZero(mask) > 0) {
+            double nearest_mm = 0.0, farthest_mm = 0.0;
+            cv::minMaxLoc(depth_mm, &nearest_mm, &farthest_mm, nullptr, nullptr, mask);
+            out.tuftNearest_m = static_cast<float>(nearest_mm) / seg::kMillimetresPerMetre;
+            out.tuftFarthest_m = static_cast<float>(farthest_mm) / seg::kMillimetresPerMetre;
+        }
+        // Every in-band reading, for the tip trails the next stages would drop.
+        const cv::Mat1b inBand = params.tipTrailMinReach_px > 0.f ? mask.clone() : cv::Mat1b();
         if (params.outlierMethod != OutlierMethod::None)
             stage(out, "outlier removal", &mask, [&](StageReport& r) {
                 seg::removeOutliers(depth_mm, intrinsics, params, mask, r);
             });
-        return fromMask(std::move(mask), std::move(out));
+        return fromMask(std::move(mask), std::move(out), inBand);
     }
 
-    Segmentation fromMask(cv::Mat1b mask, Segmentation out) const {
+    // `readings`: the in-band readings before outlier removal (empty for a given mask).
+    Segmentation fromMask(cv::Mat1b mask, Segmentation out,
+                          const cv::Mat1b& readings = cv::Mat1b()) const {
         // Clean-up and contours work inside the region the mask can reach, not the whole frame:
         // a tuft covers a small part of it, and the results are the same (cleanUpRegion).
-        const cv::Rect region = seg::cleanUpRegion(mask, params);
-        cv::Mat1b local = region.empty() ? cv::Mat1b() : cv::Mat1b(mask(region).clone());
+        const cv::Rect cleaned = seg::cleanUpRegion(mask, params);
+        cv::Mat1b local = cleaned.empty() ? cv::Mat1b() : cv::Mat1b(mask(cleaned).clone());
         stage(out, "clean-up", &local, [&](StageReport& r) {
             if (!local.empty()) seg::cleanUpMask(params, local, r);
         });
         mask.setTo(0);
-        if (!local.empty()) local.copyTo(mask(region));
+        if (!local.empty()) local.copyTo(mask(cleaned));
+        cv::Rect region = cleaned;
+        seg::TipTrails trails;
+        if (!readings.empty())
+            stage(out, "tip trails", &mask, [&](StageReport& r) {
+                trails = seg::recoverTipTrails(readings, params, mask, r);
+                region |= trails.box;
+            });
         out.clusterMask = mask;
         stage(out, "contours", &local, [&](StageReport& r) {
             out.clusters = seg::extractClusters(mask, region, params, r);
@@ -247,6 +267,8 @@ struct Segmenter::Impl {
                                                     static_cast<int>(out.blades.size()) + 1, r);
                 seg::flagBlades(blades, cluster, mask.size(), params);
                 for (auto& b : blades) {
+                    const auto tip = static_cast<size_t>(b.tipIndex);
+                    b.tipOnTrail = tip < b.contour_px.size() && trails.holds(b.contour_px[tip]);
                     cluster.bladeIds.push_back(b.id);
                     out.blades.push_back(std::move(b));
                 }

@@ -64,6 +64,20 @@ void cleanUpMask(const SegmenterParams& params, cv::Mat1b& mask, StageReport& re
 // gives the same pixels as over the whole frame. Empty for an empty mask.
 cv::Rect cleanUpRegion(const cv::Mat1b& mask, const SegmenterParams& params);
 
+// tip_trails.cpp: dotted lines of in-band readings (`candidates`, before outlier removal and
+// clean-up) that run on from the mask, as a blade's tip does under lateral noise, are linked
+// back onto `mask` one pixel wide. Returns what was added: a mask over `box` of the frame
+// (both empty if nothing was).
+struct TipTrails {
+    cv::Rect box;
+    cv::Mat1b added;
+    [[nodiscard]] bool holds(cv::Point frame_px) const {
+        return box.contains(frame_px) && added(frame_px - box.tl()) != 0;
+    }
+};
+TipTrails recoverTipTrails(const cv::Mat1b& candidates, const SegmenterParams& params,
+                           cv::Mat1b& mask, StageReport& report);
+
 // contour_extraction.cpp: one cluster per remaining region, with contour, centre, base point
 // and reference; flags holes (crossing blades) and hidden bases.
 // Only `region` of the frame-sized mask is searched (cleanUpRegion: nothing lies outside it).

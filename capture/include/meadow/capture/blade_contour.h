@@ -32,6 +32,10 @@ struct BladeContour {
     cv::Point maskOrigin_px{0, 0};
     std::vector<BladeFlag> flags;
     std::vector<std::string> reasons;  // one human-readable line per flag
+    // The tip lies on a tip trail: dotted readings past the cleaned mask that the segmenter
+    // linked back (SegmenterParams::tipTrailMinReach_px). The contour then ends where the
+    // readings do, in the tip's own taper, not where a too-thin tip was cut off.
+    bool tipOnTrail = false;
 
     // Whether frame pixel p_px belongs to the blade.
     [[nodiscard]] bool covers(cv::Point p_px) const;

@@ -107,6 +107,15 @@ struct SegmenterParams {
     int minRegionArea_px = 60;  // connected regions smaller than this are dropped
     int maxHoleArea_px = 30;    // enclosed holes up to this size are filled (dropouts)
 
+    // --- Tip trails: a tip under ~2 px wide reaches the mask as a dotted line of in-band
+    // readings (lateral noise gives about half of them to the background), which outlier
+    // removal and clean-up drop. Groups of such readings, gaps up to tipTrailGap_px, that start
+    // at the mask and reach at least tipTrailMinReach_px from it are linked back one pixel wide;
+    // edge speckle beside a blade reaches 1-2 px. 0 = off.
+    float tipTrailMinReach_px = 4.0f;
+    int tipTrailGap_px = 2;
+    int tipTrailMaxLength_px = 48;  // how far from the mask's box a trail is searched
+
     // --- Partition (Sec. 4.2).
     ReferencePoint reference = ReferencePoint::BasePoint;
     float baseBandFraction = 0.05f;  // BasePoint: lowest share of the cluster's height used
@@ -165,6 +174,10 @@ struct Segmentation {
     cv::Mat1b clusterMask;  // foreground after clean-up (255), frame-sized
     std::vector<StageReport> report;
     float nearDepth_m = 0.0f, farDepth_m = 0.0f;  // the band actually used
+    // The nearest and farthest reading the tuft's mask kept (the band grown into tips that
+    // lean out of it). A reading outside is not the tuft's: a pixel that the clean-up or a tip
+    // trail filled in can carry the wall behind. 0 and 0 for a given mask (segmentMask).
+    float tuftNearest_m = 0.0f, tuftFarthest_m = 0.0f;
     // The ground the plane removal found, in camera space (metres): n.x + d = 0 with |n| = 1 and
     // n pointing up, away from the ground (n.x + d > 0 above it). Empty without a plane fit or
     // when no plane passed as ground.

@@ -1,0 +1,262 @@
+// Tip trails: a blade's tip narrows below two pixels, where the sensor's lateral noise hands
+// about half of its pixels to the background. What is left is a dotted line of in-band
+// readings that the outlier filter and the clean-up remove, so the mask's blade ends 20-50 px
+// short of its tip. Here such dotted lines are found among the in-band readings the mask left
+// out and linked back onto the mask, one pixel wide.
+//
+// A trail is told from the ragged edge beside a blade by how far it reaches from the mask:
+// edge speckle stays within a pixel or two of it, a tip runs on for many pixels.
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <opencv2/imgproc.hpp>
+
+#include "segmentation/stages.h"
+
+namespace meadow::capture::segmentation {
+namespace {
+
+// Links from one trail to the mask land within this many pixels of its first one.
+constexpr int kAttachSpread_px = 2;
+// Joined readings of a trail (readings dilated to bridge the gaps) are at most this wide.
+constexpr int kMaxTrailWidth_px = 6;
+
+// Fills the 4-connected background regions of `mask` of at most maxArea_px that border a pixel
+// of `added` and touch no side of `mask` (a region cut by a side counts as open: pass a view
+// that reaches maxArea_px past `added` on every side). Flood fills from `added`, capped, so the
+// cost follows the trails, not the view. Returns the pixels filled.
+int fillSlivers(cv::Mat1b& mask, const cv::Mat1b& added, int maxArea_px) {
+    cv::Mat1b seen(mask.size(), std::uint8_t{0});
+    std::vector<cv::Point> region;
+    int filled = 0;
+    const std::array<cv::Point, 4> kFour{{{1, 0}, {-1, 0}, {0, 1}, {0, -1}}};
+    const cv::Rect inside({0, 0}, mask.size());
+    for (int y = 0; y < mask.rows; ++y)
+        for (int x = 0; x < mask.cols; ++x) {
+            if (!added(y, x)) continue;
+            for (const cv::Point d : kFour) {
+                const cv::Point start = cv::Point(x, y) + d;
+                if (!inside.contains(start) || mask(start) || seen(start)) continue;
+                region.assign(1, start);
+                seen(start) = 255;
+                bool open = false;
+                for (size_t head = 0; head < region.size() && !open; ++head) {
+                    for (const cv::Point e : kFour) {
+                        const cv::Point q = region[head] + e;
+                        if (!inside.contains(q)) {
+                            open = true;  // reaches a side
+                            break;
+                        }
+                        if (mask(q) || seen(q)) continue;
+                        seen(q) = 255;
+                        region.push_back(q);
+                    }
+                    open |= static_cast<int>(region.size()) > maxArea_px;
+                }
+                if (open) continue;
+                for (const cv::Point q : region) mask(q) = 255;
+                filled += static_cast<int>(region.size());
+            }
+        }
+    return filled;
+}
+
+// `trail` reordered from its reading of least `distance` outward: breadth first over the
+// trail's readings, `step` px apart at most (chessboard). Readings the fill does not reach (joined
+// to the rest only through edge readings) follow, nearest the mask first.
+template <class Distance>
+std::vector<cv::Point> alongTrail(const std::vector<cv::Point>& trail, const cv::Rect& local,
+                                  Distance distance, int step) {
+    cv::Mat1i index(local.size(), -1);
+    for (size_t i = 0; i < trail.size(); ++i) index(trail[i] - local.tl()) = static_cast<int>(i);
+    const auto start = std::min_element(trail.begin(), trail.end(), [&](cv::Point a, cv::Point b) {
+        return distance(a) < distance(b);
+    });
+    std::vector<cv::Point> order{*start};
+    std::vector<char> taken(trail.size(), 0);
+    taken[static_cast<size_t>(start - trail.begin())] = 1;
+    for (size_t head = 0; head < order.size(); ++head)
+        for (int dy = -step; dy <= step; ++dy)
+            for (int dx = -step; dx <= step; ++dx) {
+                const cv::Point q = order[head] - local.tl() + cv::Point(dx, dy);
+                if (q.x < 0 || q.y < 0 || q.x >= local.width || q.y >= local.height) continue;
+                const int i = index(q);
+                if (i < 0 || taken[static_cast<size_t>(i)]) continue;
+                taken[static_cast<size_t>(i)] = 1;
+                order.push_back(trail[static_cast<size_t>(i)]);
+            }
+    std::vector<cv::Point> rest;
+    for (size_t i = 0; i < trail.size(); ++i)
+        if (!taken[i]) rest.push_back(trail[i]);
+    std::sort(rest.begin(), rest.end(),
+              [&](cv::Point a, cv::Point b) { return distance(a) < distance(b); });
+    order.insert(order.end(), rest.begin(), rest.end());
+    return order;
+}
+
+}  // namespace
+
+TipTrails recoverTipTrails(const cv::Mat1b& candidates, const SegmenterParams& params,
+                           cv::Mat1b& mask, StageReport& report) {
+    if (!(params.tipTrailMinReach_px > 0.f) || candidates.empty()) return {};
+    const cv::Rect maskBox = cv::boundingRect(mask);
+    if (maskBox.empty()) {
+        report.notes.push_back("the mask is empty: no tip to follow");
+        return {};
+    }
+    const int gap = params.tipTrailGap_px;
+    const cv::Rect box =
+        grownWithin(maskBox, params.tipTrailMaxLength_px, cv::Rect(0, 0, mask.cols, mask.rows));
+    cv::Mat1b inMask = mask(box);  // a view: what is set in it is set in `mask`
+    const cv::Mat1b loose = candidates(box) & ~inMask;
+    if (cv::countNonZero(loose) == 0) {
+        report.notes.push_back("every in-band reading is on the mask: no trail to follow");
+        return {};
+    }
+
+    // Distances to the mask as zones of rectangular dilations (chessboard distance): a full
+    // distance transform of the box cost more than the rest of the front end.
+    const int linkRadius_px = gap + 1;  // a trail reading links to a pixel this close (or nearer)
+    const auto zone = [&](int radius) {
+        cv::Mat1b z;
+        cv::dilate(inMask, z,
+                   cv::getStructuringElement(cv::MORPH_RECT, {2 * radius + 1, 2 * radius + 1}));
+        return z;
+    };
+    const cv::Mat1b adjacent = zone(1);  // touching the mask: edge, not trail
+    const cv::Mat1b touching = zone(linkRadius_px);
+    const int reach = std::max(1, static_cast<int>(std::ceil(params.tipTrailMinReach_px)));
+    const cv::Mat1b near = reach - 1 == linkRadius_px ? touching : zone(reach - 1);
+    // Readings up to `gap` px apart belong to one trail. Groups are grown from the readings
+    // that start near the mask only (a flood fill over the sparse readings; labelling every
+    // component of the box cost 0.8 ms). A group larger than a line of the longest trail
+    // (kMaxTrailWidth_px times as many readings) is a surface, such as ground the band kept or
+    // a leaf behind, and is not followed.
+    const int step = gap + 1;
+    const int maxGroup = kMaxTrailWidth_px * params.tipTrailMaxLength_px;
+    cv::Mat1b seen(box.size(), std::uint8_t{0});
+    struct Group {
+        std::vector<cv::Point> trail;  // its readings not touching the mask
+        cv::Rect bounds;
+        bool reaches = false;
+    };
+    std::vector<Group> groups;
+    int rejectedWide = 0;
+    std::vector<cv::Point> queue;
+    for (int y = 0; y < box.height; ++y)
+        for (int x = 0; x < box.width; ++x) {
+            if (!loose(y, x) || seen(y, x) || !touching(y, x) || adjacent(y, x)) continue;
+            Group g;
+            bool wide = false;
+            queue.assign(1, {x, y});
+            seen(y, x) = 255;
+            for (size_t head = 0; head < queue.size() && !wide; ++head) {
+                const cv::Point p = queue[head];
+                g.bounds |= cv::Rect(p, cv::Size(1, 1));
+                g.reaches |= near(p) == 0;
+                if (!adjacent(p)) g.trail.push_back(p);
+                for (int dy = -step; dy <= step; ++dy)
+                    for (int dx = -step; dx <= step; ++dx) {
+                        const cv::Point q = p + cv::Point(dx, dy);
+                        if (q.x < 0 || q.y < 0 || q.x >= box.width || q.y >= box.height ||
+                            !loose(q) || seen(q))
+                            continue;
+                        seen(q) = 255;
+                        queue.push_back(q);
+                    }
+                wide = static_cast<int>(queue.size()) > maxGroup;
+            }
+            if (wide) {
+                ++rejectedWide;
+                continue;
+            }
+            groups.push_back(std::move(g));
+        }
+
+    cv::Mat1b added(box.size(), std::uint8_t{0});
+    const int window = linkRadius_px;
+    const auto nearest = [&](cv::Point p, const cv::Mat1b& on) {
+        cv::Point best(-1, -1);
+        int bestD2 = window * window * 2 + 1;
+        for (int dy = -window; dy <= window; ++dy)
+            for (int dx = -window; dx <= window; ++dx) {
+                const cv::Point q = p + cv::Point(dx, dy);
+                if (q.x < 0 || q.y < 0 || q.x >= box.width || q.y >= box.height || !on(q)) continue;
+                if (const int d2 = dx * dx + dy * dy; d2 < bestD2) {
+                    bestD2 = d2;
+                    best = q;
+                }
+            }
+        return best;
+    };
+    int accepted = 0, rejectedShort = 0, pixels = 0;
+    for (auto& group : groups) {
+        auto& trail = group.trail;
+        if (trail.empty()) continue;
+        // It starts at the mask (its seed) and must reach far enough from it.
+        if (!group.reaches) {
+            ++rejectedShort;
+            continue;
+        }
+        // Along the trail from where it leaves the mask: the reading nearest the mask first,
+        // then the others in the order a flood fill over the trail reaches them. Each links to
+        // the nearest pixel already on the trail or on the mask with a one-pixel line, so the
+        // trail stays connected to its blade.
+        const cv::Rect local = grownWithin(group.bounds, window + 1, cv::Rect({0, 0}, box.size()));
+        cv::Mat1f distance;
+        cv::distanceTransform(~inMask(local), distance, cv::DIST_L2, cv::DIST_MASK_5);
+        trail = alongTrail(
+            trail, local, [&](cv::Point p) { return distance(p - local.tl()); }, step);
+        const int before = cv::countNonZero(added(local));
+        // A trail meets its blade once, where it leaves the mask: a second link to the mask
+        // elsewhere would close a loop (taken for crossing blades) or add a spur beside it.
+        cv::Point attachedAt(-1, -1);
+        for (const cv::Point p : trail) {
+            cv::Point to = nearest(p, added);
+            if (to.x < 0) {
+                to = nearest(p, inMask);
+                if (to.x < 0) continue;  // joined only through edge readings: not on this trail
+                if (attachedAt.x < 0) {
+                    attachedAt = to;
+                } else if (std::abs(to.x - attachedAt.x) > kAttachSpread_px ||
+                           std::abs(to.y - attachedAt.y) > kAttachSpread_px) {
+                    continue;
+                }
+            }
+            cv::line(added, to, p, 255, 1, cv::LINE_8);
+        }
+        cv::Mat1b addedHere = added(local);
+        addedHere.setTo(0, inMask(local));
+        const int count = cv::countNonZero(addedHere) - before;
+        if (count == 0) continue;
+        pixels += count;
+        ++accepted;
+    }
+    if (rejectedWide > 0)
+        report.notes.push_back(
+            std::to_string(rejectedWide) +
+            " reading group(s) beside the mask too wide for a tip: not followed");
+    if (rejectedShort > 0)
+        report.notes.push_back(std::to_string(rejectedShort) +
+                               " reading group(s) beside the mask reach less than " +
+                               std::to_string(params.tipTrailMinReach_px).substr(0, 4) +
+                               " px from it: edge noise, not tips");
+    if (accepted == 0) {
+        report.notes.push_back("no tip trail found");
+        return {};
+    }
+    inMask.setTo(255, added);
+    // A trail that runs beside its blade for a few pixels before it meets it encloses a sliver
+    // of background; such slivers are filled as the clean-up fills small holes.
+    // A sliver of at most maxHoleArea_px beside a trail lies within that distance of it.
+    const cv::Rect sliverBox = grownWithin(cv::boundingRect(added), params.maxHoleArea_px + 1,
+                                           cv::Rect({0, 0}, box.size()));
+    cv::Mat1b sliverMask = inMask(sliverBox);
+    pixels += fillSlivers(sliverMask, added(sliverBox), params.maxHoleArea_px);
+    report.notes.push_back(std::to_string(accepted) + " tip trail(s) of dotted in-band readings " +
+                           "linked back onto the mask (" + std::to_string(pixels) + " px)");
+    const cv::Rect addedBox = cv::boundingRect(added);
+    return {addedBox + box.tl(), added(addedBox).clone()};
+}
+
+}  // namespace meadow::capture::segmentation

@@ -1,0 +1,158 @@
+// Tip trails (capture/src/segmentation/tip_trails.cpp): dotted in-band readings that run on
+// from the cleaned mask, as a tip under two pixels wide reaches a structured-light sensor, are
+// linked back; edge speckle, surfaces and readings past a gap are not.
+#include <gtest/gtest.h>
+
+#include <opencv2/imgproc.hpp>
+
+#include "../../capture/src/segmentation/stages.h"
+#include "meadow/capture/segmenter.h"
+
+namespace meadow::capture {
+namespace {
+
+namespace seg = segmentation;
+
+const cv::Size kFrame{160, 200};
+// The cleaned mask: an upright blade 8 px wide, rows 80-179, base at the bottom.
+const cv::Rect kBlade{76, 80, 8, 100};
+constexpr int kColumn = 79;  // the dotted tip's column, inside the blade's width
+
+cv::Mat1b bladeMask() {
+    cv::Mat1b m = cv::Mat1b::zeros(kFrame);
+    m(kBlade).setTo(255);
+    return m;
+}
+
+// Every second row from just above the blade up to `top` (a tip under lateral noise keeps
+// about half of its readings).
+void dotTip(cv::Mat1b& readings, int top, int column = kColumn) {
+    for (int y = kBlade.y - 2; y >= top; y -= 2) readings(y, column) = 255;
+}
+
+// 4-connected background regions that touch no side of the frame.
+int enclosedHoles(const cv::Mat1b& mask) {
+    cv::Mat1i labels;
+    cv::Mat stats, centroids;
+    const int n = cv::connectedComponentsWithStats(mask == 0, labels, stats, centroids, 4, CV_32S);
+    int holes = 0;
+    for (int i = 1; i < n; ++i) {
+        const int x = stats.at<int>(i, cv::CC_STAT_LEFT), y = stats.at<int>(i, cv::CC_STAT_TOP);
+        const int w = stats.at<int>(i, cv::CC_STAT_WIDTH), h = stats.at<int>(i, cv::CC_STAT_HEIGHT);
+        holes += x > 0 && y > 0 && x + w < mask.cols && y + h < mask.rows;
+    }
+    return holes;
+}
+
+TEST(TipTrails, DottedReadingsPastTheTipAreLinkedBackOnePixelWide) {
+    cv::Mat1b mask = bladeMask();
+    cv::Mat1b readings = mask.clone();
+    dotTip(readings, 40);  // 40 px of dotted tip above row 80
+    StageReport report;
+    const seg::TipTrails trails = seg::recoverTipTrails(readings, {}, mask, report);
+    // The blade now reaches the top dot, through one connected line of one pixel.
+    EXPECT_TRUE(trails.holds({kColumn, 40}));
+    EXPECT_EQ(mask(40, kColumn), 255);
+    for (int y = 40; y < kBlade.y; ++y) EXPECT_EQ(cv::countNonZero(mask.row(y)), 1) << "row " << y;
+    cv::Mat1i labels;
+    EXPECT_EQ(cv::connectedComponents(mask, labels, 8), 2);  // background + one region
+    EXPECT_EQ(enclosedHoles(mask), 0);
+    ASSERT_FALSE(report.notes.empty());
+    EXPECT_NE(report.notes.back().find("1 tip trail"), std::string::npos) << report.notes.back();
+}
+
+TEST(TipTrails, EdgeSpeckleBesideTheBladeIsNotATrail) {
+    cv::Mat1b mask = bladeMask();
+    cv::Mat1b readings = mask.clone();
+    // Readings the lateral noise scattered 2-3 px off both sides, every third row.
+    for (int y = kBlade.y + 2; y < kBlade.br().y - 2; y += 3) {
+        readings(y, kBlade.x - 2 - (y % 2)) = 255;
+        readings(y, kBlade.br().x + 1 + (y % 2)) = 255;
+    }
+    const cv::Mat1b before = mask.clone();
+    StageReport report;
+    const seg::TipTrails trails = seg::recoverTipTrails(readings, {}, mask, report);
+    EXPECT_TRUE(trails.added.empty());
+    EXPECT_EQ(cv::countNonZero(mask != before), 0);
+    bool toldWhy = false;
+    for (const auto& note : report.notes) toldWhy |= note.find("edge noise") != std::string::npos;
+    EXPECT_TRUE(toldWhy);
+}
+
+TEST(TipTrails, ASurfaceOfReadingsBesideTheBladeIsNotFollowed) {
+    cv::Mat1b mask = bladeMask();
+    cv::Mat1b readings = mask.clone();
+    // A 40 x 40 checkerboard of readings touching the blade's side: a leaf or ground behind,
+    // far more readings than a line of the longest trail holds.
+    for (int y = 100; y < 140; ++y)
+        for (int x = kBlade.br().x + 1; x < kBlade.br().x + 41; ++x)
+            if ((x + y) % 2 == 0) readings(y, x) = 255;
+    const cv::Mat1b before = mask.clone();
+    StageReport report;
+    seg::recoverTipTrails(readings, {}, mask, report);
+    EXPECT_EQ(cv::countNonZero(mask != before), 0);
+    bool toldWhy = false;
+    for (const auto& note : report.notes) toldWhy |= note.find("too wide") != std::string::npos;
+    EXPECT_TRUE(toldWhy);
+}
+
+TEST(TipTrails, ReadingsPastAGapWiderThanTipTrailGapAreLeftOut) {
+    cv::Mat1b mask = bladeMask();
+    cv::Mat1b readings = mask.clone();
+    dotTip(readings, 60);                                          // rows 78..60
+    for (int y = 54; y >= 30; y -= 2) readings(y, kColumn) = 255;  // past a 5-row gap
+    SegmenterParams params;
+    ASSERT_LT(params.tipTrailGap_px, 5);
+    StageReport report;
+    const seg::TipTrails trails = seg::recoverTipTrails(readings, params, mask, report);
+    EXPECT_TRUE(trails.holds({kColumn, 60}));
+    EXPECT_EQ(cv::countNonZero(mask.rowRange(0, 58)), 0);
+}
+
+TEST(TipTrails, ATrailBesideItsBladeEnclosesNoHole) {
+    cv::Mat1b mask = bladeMask();
+    cv::Mat1b readings = mask.clone();
+    // Readings 3 px off the blade's right side from row 100 up past its top, then on up: a tip
+    // bent sideways whose first readings run beside the blade.
+    const int column = kBlade.br().x + 2;
+    for (int y = 100; y >= 50; y -= 2) readings(y, column) = 255;
+    StageReport report;
+    const seg::TipTrails trails = seg::recoverTipTrails(readings, {}, mask, report);
+    EXPECT_TRUE(trails.holds({column, 50}));
+    EXPECT_EQ(enclosedHoles(mask), 0);
+}
+
+TEST(TipTrails, SegmenterFollowsADottedTipAndSaysSo) {
+    // Depth: the blade at 0.8 m with its dotted tip, a wall at 1.5 m; a user band keeps the
+    // blade. Outlier removal drops the dots (too few neighbours), the trail brings them back.
+    DepthFrame frame;
+    frame.intrinsics.width_px = kFrame.width;
+    frame.intrinsics.height_px = kFrame.height;
+    frame.intrinsics.cx_px = 79.5f;
+    frame.intrinsics.cy_px = 99.5f;
+    frame.depth_mm = cv::Mat1w(kFrame, std::uint16_t{1500});
+    cv::Mat1b blade = bladeMask();
+    dotTip(blade, 40);
+    frame.depth_mm.setTo(800, blade);
+    SegmenterParams params;
+    params.nearDepth_m = 0.7f;
+    params.farDepth_m = 0.9f;
+    params.planeMethod = PlaneMethod::None;
+    const Segmentation found = Segmenter(params).segment(frame);
+    ASSERT_EQ(found.blades.size(), 1u) << found.summary();
+    const BladeContour& b = found.blades.front();
+    EXPECT_TRUE(b.tipOnTrail);
+    EXPECT_LE(b.contour_px[static_cast<size_t>(b.tipIndex)].y, 41) << found.summary();
+    EXPECT_NEAR(found.tuftNearest_m, 0.8f, 1e-3f);
+    EXPECT_NEAR(found.tuftFarthest_m, 0.8f, 1e-3f);
+
+    params.tipTrailMinReach_px = 0.f;  // off: the blade ends at the cleaned mask
+    const Segmentation cut = Segmenter(params).segment(frame);
+    ASSERT_EQ(cut.blades.size(), 1u) << cut.summary();
+    const BladeContour& c = cut.blades.front();
+    EXPECT_FALSE(c.tipOnTrail);
+    EXPECT_GE(c.contour_px[static_cast<size_t>(c.tipIndex)].y, kBlade.y - 2) << cut.summary();
+}
+
+}  // namespace
+}  // namespace meadow::capture
