@@ -191,8 +191,17 @@ BladeFit fitSegmentedBlade(const capture::Segmentation& segmentation, std::size_
     Source src = source;
     if (src.frame < 0) src.frame = frame.index;
     if (src.bladeId == 0) src.bladeId = blade.id;
-    Skeleton skeleton = extractSkeleton(blade, frame, params.skeleton);
-    if (params.tip.enabled) extendSkeletonTip(skeleton, params.tip);
+    SkeletonParams skeletonParams = params.skeleton;
+    if (skeletonParams.minDepth_m == 0.f && skeletonParams.maxDepth_m == 0.f) {
+        skeletonParams.minDepth_m = segmentation.tuftNearest_m;
+        skeletonParams.maxDepth_m = segmentation.tuftFarthest_m;
+    }
+    Skeleton skeleton = extractSkeleton(blade, frame, skeletonParams);
+    if (params.tip.enabled) {
+        TipParams tip = params.tip;
+        if (blade.tipOnTrail && tip.toEndOnTrail) tip.widthFitTo = 1.f;
+        extendSkeletonTip(skeleton, tip);
+    }
     if (params.root.enabled) {
         if (const auto base = clusterBase(segmentation, blade.id, frame, params.root)) {
             rootSkeleton(skeleton, *base, params.root);

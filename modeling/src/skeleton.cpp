@@ -111,7 +111,9 @@ glm::vec2 safeNormalize(glm::vec2 v, glm::vec2 fallback) {
 // (u, v); NaN when there is none. Restricting to the mask keeps the background out; the median
 // keeps the minority of flying pixels on the blade's edge out.
 float windowDepth_m(const capture::DepthFrame& frame, const capture::BladeContour& blade,
-                    glm::vec2 p_px, int r) {
+                    glm::vec2 p_px, int r, const SkeletonParams& params) {
+    const float lowest_mm = params.minDepth_m * 1e3f;
+    const float highest_mm = params.maxDepth_m > 0.f ? params.maxDepth_m * 1e3f : 1e9f;
     const bool useMask = !blade.mask.empty();
     const int u0 = static_cast<int>(std::lround(p_px.x)),
               v0 = static_cast<int>(std::lround(p_px.y));
@@ -122,7 +124,8 @@ float windowDepth_m(const capture::DepthFrame& frame, const capture::BladeContou
             if (u < 0 || u >= frame.depth_mm.cols) continue;
             if (useMask && !blade.covers({u, v})) continue;
             const std::uint16_t d = frame.depth_mm(v, u);
-            if (d > 0) values.push_back(static_cast<float>(d) * 1e-3f);
+            if (d > 0 && d >= lowest_mm && d <= highest_mm)
+                values.push_back(static_cast<float>(d) * 1e-3f);
         }
     }
     return values.empty() ? std::nanf("") : median(std::move(values));
@@ -376,7 +379,7 @@ Skeleton extractSkeleton(const capture::BladeContour& blade, const capture::Dept
 
     std::vector<float> z(static_cast<std::size_t>(n));
     for (int i = 0; i < n; ++i)
-        z[i] = windowDepth_m(frame, blade, s.midline_px[i], params.depthWindowRadius_px);
+        z[i] = windowDepth_m(frame, blade, s.midline_px[i], params.depthWindowRadius_px, params);
     s.filledDepths = rejectAndFill(z, params.maxDepthJump_m);
     if (s.filledDepths >= n)
         throw ModelingError(

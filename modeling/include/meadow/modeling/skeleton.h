@@ -33,6 +33,11 @@ struct SkeletonParams {
     // A depth differing from the running median along the chain by more than this is a flying
     // pixel or a hole edge: it is dropped and filled from its neighbours along the chain.
     float maxDepthJump_m = 0.015f;
+    // Readings outside [minDepth_m, maxDepth_m] are not the blade's (0 = no bound on that side).
+    // fitSegmentedBlade sets them to the tuft's depth range (Segmentation::tuftNearest_m and
+    // tuftFarthest_m): mask pixels the clean-up or a tip trail filled in can read the wall.
+    float minDepth_m = 0.0f;
+    float maxDepth_m = 0.0f;
 };
 
 struct Skeleton {
