@@ -14,13 +14,19 @@ namespace {
 namespace seg = segmentation;
 
 const cv::Size kFrame{160, 200};
-// The cleaned mask: an upright blade 8 px wide, rows 80-179, base at the bottom.
+// The cleaned mask: an upright blade 8 px wide, rows 80-179, base at the bottom, narrowing over
+// its top 20 rows to a 2 px end at row 80 (columns 79-80), where its tip falls apart.
 const cv::Rect kBlade{76, 80, 8, 100};
-constexpr int kColumn = 79;  // the dotted tip's column, inside the blade's width
+constexpr int kColumn = 79;  // the dotted tip's column, on the narrow end
 
 cv::Mat1b bladeMask() {
     cv::Mat1b m = cv::Mat1b::zeros(kFrame);
-    m(kBlade).setTo(255);
+    m(cv::Rect(kBlade.x, kBlade.y + 20, kBlade.width, kBlade.height - 20)).setTo(255);
+    const std::vector<cv::Point> taper{{kBlade.x, kBlade.y + 20},
+                                       {kColumn, kBlade.y},
+                                       {kColumn + 1, kBlade.y},
+                                       {kBlade.br().x - 1, kBlade.y + 20}};
+    cv::fillConvexPoly(m, taper, 255);
     return m;
 }
 
@@ -64,8 +70,9 @@ TEST(TipTrails, DottedReadingsPastTheTipAreLinkedBackOnePixelWide) {
 TEST(TipTrails, EdgeSpeckleBesideTheBladeIsNotATrail) {
     cv::Mat1b mask = bladeMask();
     cv::Mat1b readings = mask.clone();
-    // Readings the lateral noise scattered 2-3 px off both sides, every third row.
-    for (int y = kBlade.y + 2; y < kBlade.br().y - 2; y += 3) {
+    // Readings the lateral noise scattered 2-3 px off both sides, every eighth row (about 6 %
+    // of the pixels there: nominal noise).
+    for (int y = kBlade.y + 22; y < kBlade.br().y - 2; y += 8) {
         readings(y, kBlade.x - 2 - (y % 2)) = 255;
         readings(y, kBlade.br().x + 1 + (y % 2)) = 255;
     }
@@ -109,17 +116,57 @@ TEST(TipTrails, ReadingsPastAGapWiderThanTipTrailGapAreLeftOut) {
     EXPECT_EQ(cv::countNonZero(mask.rowRange(0, 58)), 0);
 }
 
-TEST(TipTrails, ATrailBesideItsBladeEnclosesNoHole) {
+TEST(TipTrails, ReadingsThatRunAlongTheBladesSideAreNotATip) {
     cv::Mat1b mask = bladeMask();
     cv::Mat1b readings = mask.clone();
-    // Readings 3 px off the blade's right side from row 100 up past its top, then on up: a tip
-    // bent sideways whose first readings run beside the blade.
+    // A chain of readings 3 px off the blade's right side, rows 170 up to 110: speckle that
+    // lateral noise strung along a side reaches as far from the mask as a tip does, but leaves
+    // it sideways.
     const int column = kBlade.br().x + 2;
-    for (int y = 100; y >= 50; y -= 2) readings(y, column) = 255;
+    for (int y = 170; y >= 110; y -= 2) readings(y, column) = 255;
+    for (int x = column; x <= column + 8; x += 2) readings(110, x) = 255;  // and away from it
+    const cv::Mat1b before = mask.clone();
+    StageReport report;
+    seg::recoverTipTrails(readings, {}, mask, report);
+    EXPECT_EQ(cv::countNonZero(mask != before), 0);
+    bool toldWhy = false;
+    for (const auto& note : report.notes) toldWhy |= note.find("sideways") != std::string::npos;
+    EXPECT_TRUE(toldWhy);
+}
+
+TEST(TipTrails, ATrailThatBendsBesideItsBladeEnclosesNoHole) {
+    cv::Mat1b mask = bladeMask();
+    cv::Mat1b readings = mask.clone();
+    // A tip bent over: its dotted readings leave the narrow end upward, then turn and come
+    // back down 4 px beside the taper.
+    for (int y = kBlade.y - 2; y >= kBlade.y - 10; y -= 2) readings(y, kColumn) = 255;
+    for (int x = kColumn + 2; x <= kColumn + 8; x += 2) readings(kBlade.y - 11, x) = 255;
+    for (int y = kBlade.y - 9; y <= kBlade.y + 6; y += 2) readings(y, kColumn + 9) = 255;
     StageReport report;
     const seg::TipTrails trails = seg::recoverTipTrails(readings, {}, mask, report);
-    EXPECT_TRUE(trails.holds({column, 50}));
+    EXPECT_TRUE(trails.holds({kColumn, kBlade.y - 10}));
     EXPECT_EQ(enclosedHoles(mask), 0);
+}
+
+TEST(TipTrails, NotFollowedWhereEdgesAreTooRagged) {
+    cv::Mat1b mask = bladeMask();
+    cv::Mat1b readings = mask.clone();
+    dotTip(readings, 40);
+    // Readings on every third pixel 2-3 px outside the blade: noise far above nominal.
+    cv::Mat1b ring, inner;
+    cv::dilate(mask, ring, cv::getStructuringElement(cv::MORPH_RECT, {7, 7}));
+    cv::dilate(mask, inner, cv::Mat());
+    ring &= ~inner;
+    int k = 0;
+    for (int y = 0; y < ring.rows; ++y)
+        for (int x = 0; x < ring.cols; ++x)
+            if (ring(y, x) && k++ % 3 == 0) readings(y, x) = 255;
+    const cv::Mat1b before = mask.clone();
+    StageReport report;
+    seg::recoverTipTrails(readings, {}, mask, report);
+    EXPECT_EQ(cv::countNonZero(mask != before), 0);
+    ASSERT_FALSE(report.notes.empty());
+    EXPECT_NE(report.notes.back().find("too ragged"), std::string::npos) << report.notes.back();
 }
 
 TEST(TipTrails, SegmenterFollowsADottedTipAndSaysSo) {

@@ -18,6 +18,10 @@ namespace {
 
 // Links from one trail to the mask land within this many pixels of its first one.
 constexpr int kAttachSpread_px = 2;
+// A tip seen from where a trail leaves it (continuesTheMask).
+constexpr int kTipRadius_px = 5;
+constexpr double kTipCover = 0.4;
+constexpr double kMaxTurn_deg = 50.0;
 // Joined readings of a trail (readings dilated to bridge the gaps) are at most this wide.
 constexpr int kMaxTrailWidth_px = 6;
 
@@ -94,6 +98,36 @@ std::vector<cv::Point> alongTrail(const std::vector<cv::Point>& trail, const cv:
     return order;
 }
 
+// Whether a trail leaving the mask at `at` runs on out of a tip: the mask near `at` is narrow
+// (covers at most kTipCover of a disc of kTipRadius_px) and lies behind it, opposite the trail's
+// far end (within kMaxTurn_deg). A group of readings beside a blade's side fails both: the
+// mask there fills about half the disc, and the readings run along the side.
+template <class Distance>
+bool continuesTheMask(const cv::Mat1b& mask, cv::Point at, const std::vector<cv::Point>& trail,
+                      Distance distance, const cv::Rect& local) {
+    double sx = 0.0, sy = 0.0;
+    int inside = 0, disc = 0;
+    for (int dy = -kTipRadius_px; dy <= kTipRadius_px; ++dy)
+        for (int dx = -kTipRadius_px; dx <= kTipRadius_px; ++dx) {
+            if (dx * dx + dy * dy > kTipRadius_px * kTipRadius_px) continue;
+            ++disc;
+            const cv::Point q = at + cv::Point(dx, dy);
+            if (q.x < 0 || q.y < 0 || q.x >= mask.cols || q.y >= mask.rows || !mask(q)) continue;
+            ++inside;
+            sx += q.x;
+            sy += q.y;
+        }
+    if (inside == 0 || inside > kTipCover * disc) return false;
+    const cv::Point2d behind = cv::Point2d(at) - cv::Point2d(sx / inside, sy / inside);
+    const cv::Point far =
+        *std::max_element(trail.begin(), trail.end(), [&](cv::Point a, cv::Point b) {
+            return distance(a - local.tl()) < distance(b - local.tl());
+        });
+    const cv::Point2d out = cv::Point2d(far) - cv::Point2d(at);
+    const double norms = cv::norm(behind) * cv::norm(out);
+    return norms > 0.0 && behind.dot(out) >= std::cos(kMaxTurn_deg * CV_PI / 180.0) * norms;
+}
+
 }  // namespace
 
 TipTrails recoverTipTrails(const cv::Mat1b& candidates, const SegmenterParams& params,
@@ -108,14 +142,16 @@ TipTrails recoverTipTrails(const cv::Mat1b& candidates, const SegmenterParams& p
     const cv::Rect box =
         grownWithin(maskBox, params.tipTrailMaxLength_px, cv::Rect(0, 0, mask.cols, mask.rows));
     cv::Mat1b inMask = mask(box);  // a view: what is set in it is set in `mask`
-    const cv::Mat1b loose = candidates(box) & ~inMask;
+    cv::Mat1b loose;  // in-band readings off the mask: candidates minus mask (saturating)
+    cv::subtract(candidates(box), inMask, loose);
     if (cv::countNonZero(loose) == 0) {
         report.notes.push_back("every in-band reading is on the mask: no trail to follow");
         return {};
     }
 
-    // Distances to the mask as zones of rectangular dilations (chessboard distance): a full
-    // distance transform of the box cost more than the rest of the front end.
+    // Distance to the mask by a rectangular dilation (chessboard distance): a full distance
+    // transform of the box cost more than the rest of the front end. A reading touches the mask
+    // (edge, not trail) when one of its eight neighbours is on it.
     const int linkRadius_px = gap + 1;  // a trail reading links to a pixel this close (or nearer)
     const auto zone = [&](int radius) {
         cv::Mat1b z;
@@ -123,15 +159,45 @@ TipTrails recoverTipTrails(const cv::Mat1b& candidates, const SegmenterParams& p
                    cv::getStructuringElement(cv::MORPH_RECT, {2 * radius + 1, 2 * radius + 1}));
         return z;
     };
-    const cv::Mat1b adjacent = zone(1);  // touching the mask: edge, not trail
+    const auto adjacent = [&](cv::Point p) {
+        for (int dy = -1; dy <= 1; ++dy)
+            for (int dx = -1; dx <= 1; ++dx) {
+                const cv::Point q = p + cv::Point(dx, dy);
+                if (q.x >= 0 && q.y >= 0 && q.x < box.width && q.y < box.height && inMask(q))
+                    return true;
+            }
+        return false;
+    };
     const cv::Mat1b touching = zone(linkRadius_px);
     const int reach = std::max(1, static_cast<int>(std::ceil(params.tipTrailMinReach_px)));
     const cv::Mat1b near = reach - 1 == linkRadius_px ? touching : zone(reach - 1);
-    // Readings up to `gap` px apart belong to one trail. Groups are grown from the readings
-    // that start near the mask only (a flood fill over the sparse readings; labelling every
-    // component of the box cost 0.8 ms). A group larger than a line of the longest trail
-    // (kMaxTrailWidth_px times as many readings) is a surface, such as ground the band kept or
-    // a leaf behind, and is not followed.
+    // Trails start at readings near the mask that do not touch it.
+    std::vector<cv::Point> seeds;
+    for (int y = 0; y < box.height; ++y) {
+        const std::uint8_t* l = loose[y];
+        const std::uint8_t* t = touching[y];
+        for (int x = 0; x < box.width; ++x)
+            if (l[x] && t[x] && !adjacent({x, y})) seeds.emplace_back(x, y);
+    }
+    // How ragged the edges are: the share of the pixels 2 to linkRadius_px outside the mask
+    // that hold an in-band reading (that band is about (linkRadius_px - 1) / linkRadius_px of
+    // the zone around the mask). Lateral noise of 0.8 px puts ~2 % there, three times that
+    // ~20 %; then speckle chains reach as far as tips do and cannot be told from them.
+    const double ringPixels = (cv::countNonZero(touching) - cv::countNonZero(inMask)) *
+                              (linkRadius_px - 1.0) / linkRadius_px;
+    const double ragged = ringPixels > 0.0 ? static_cast<double>(seeds.size()) / ringPixels : 0.0;
+    if (ragged > params.tipTrailMaxRaggedness) {
+        report.notes.push_back(
+            "edges too ragged to follow tips: " + std::to_string(std::lround(100.0 * ragged)) +
+            " % of the pixels 2-" + std::to_string(linkRadius_px) +
+            " px outside the mask hold in-band readings (tipTrailMaxRaggedness " +
+            std::to_string(std::lround(100.0 * params.tipTrailMaxRaggedness)) + " %)");
+        return {};
+    }
+    // Readings up to `gap` px apart belong to one trail. Groups are grown from the seeds only (a
+    // flood fill over the sparse readings; labelling every component of the box cost 0.8 ms).
+    // A group larger than a line of the longest trail (kMaxTrailWidth_px times as many readings)
+    // is a surface, such as ground the band kept or a leaf behind, and is not followed.
     const int step = gap + 1;
     const int maxGroup = kMaxTrailWidth_px * params.tipTrailMaxLength_px;
     cv::Mat1b seen(box.size(), std::uint8_t{0});
@@ -143,35 +209,35 @@ TipTrails recoverTipTrails(const cv::Mat1b& candidates, const SegmenterParams& p
     std::vector<Group> groups;
     int rejectedWide = 0;
     std::vector<cv::Point> queue;
-    for (int y = 0; y < box.height; ++y)
-        for (int x = 0; x < box.width; ++x) {
-            if (!loose(y, x) || seen(y, x) || !touching(y, x) || adjacent(y, x)) continue;
-            Group g;
-            bool wide = false;
-            queue.assign(1, {x, y});
-            seen(y, x) = 255;
-            for (size_t head = 0; head < queue.size() && !wide; ++head) {
-                const cv::Point p = queue[head];
-                g.bounds |= cv::Rect(p, cv::Size(1, 1));
-                g.reaches |= near(p) == 0;
-                if (!adjacent(p)) g.trail.push_back(p);
-                for (int dy = -step; dy <= step; ++dy)
-                    for (int dx = -step; dx <= step; ++dx) {
-                        const cv::Point q = p + cv::Point(dx, dy);
-                        if (q.x < 0 || q.y < 0 || q.x >= box.width || q.y >= box.height ||
-                            !loose(q) || seen(q))
-                            continue;
-                        seen(q) = 255;
-                        queue.push_back(q);
-                    }
-                wide = static_cast<int>(queue.size()) > maxGroup;
-            }
-            if (wide) {
-                ++rejectedWide;
-                continue;
-            }
-            groups.push_back(std::move(g));
+    for (const cv::Point seed : seeds) {
+        if (seen(seed)) continue;
+        const int x = seed.x, y = seed.y;
+        Group g;
+        bool wide = false;
+        queue.assign(1, {x, y});
+        seen(y, x) = 255;
+        for (size_t head = 0; head < queue.size() && !wide; ++head) {
+            const cv::Point p = queue[head];
+            g.bounds |= cv::Rect(p, cv::Size(1, 1));
+            g.reaches |= near(p) == 0;
+            if (!adjacent(p)) g.trail.push_back(p);
+            for (int dy = -step; dy <= step; ++dy)
+                for (int dx = -step; dx <= step; ++dx) {
+                    const cv::Point q = p + cv::Point(dx, dy);
+                    if (q.x < 0 || q.y < 0 || q.x >= box.width || q.y >= box.height || !loose(q) ||
+                        seen(q))
+                        continue;
+                    seen(q) = 255;
+                    queue.push_back(q);
+                }
+            wide = static_cast<int>(queue.size()) > maxGroup;
         }
+        if (wide) {
+            ++rejectedWide;
+            continue;
+        }
+        groups.push_back(std::move(g));
+    }
 
     cv::Mat1b added(box.size(), std::uint8_t{0});
     const int window = linkRadius_px;
@@ -189,7 +255,7 @@ TipTrails recoverTipTrails(const cv::Mat1b& candidates, const SegmenterParams& p
             }
         return best;
     };
-    int accepted = 0, rejectedShort = 0, pixels = 0;
+    int accepted = 0, rejectedShort = 0, rejectedSideways = 0, pixels = 0;
     for (auto& group : groups) {
         auto& trail = group.trail;
         if (trail.empty()) continue;
@@ -210,7 +276,11 @@ TipTrails recoverTipTrails(const cv::Mat1b& candidates, const SegmenterParams& p
         const int before = cv::countNonZero(added(local));
         // A trail meets its blade once, where it leaves the mask: a second link to the mask
         // elsewhere would close a loop (taken for crossing blades) or add a spur beside it.
-        cv::Point attachedAt(-1, -1);
+        cv::Point attachedAt = nearest(trail.front(), inMask);
+        if (attachedAt.x >= 0 && !continuesTheMask(inMask, attachedAt, trail, distance, local)) {
+            ++rejectedSideways;
+            continue;
+        }
         for (const cv::Point p : trail) {
             cv::Point to = nearest(p, added);
             if (to.x < 0) {
@@ -232,6 +302,10 @@ TipTrails recoverTipTrails(const cv::Mat1b& candidates, const SegmenterParams& p
         pixels += count;
         ++accepted;
     }
+    if (rejectedSideways > 0)
+        report.notes.push_back(std::to_string(rejectedSideways) +
+                               " reading group(s) leave the mask sideways, not out of a tip: "
+                               "edge noise, not followed");
     if (rejectedWide > 0)
         report.notes.push_back(
             std::to_string(rejectedWide) +
