@@ -145,8 +145,8 @@ struct SegmenterParams {
     // matched leaves keep >= 31 % at 0.7-0.9 m and 22-25 % at 1.0 m (shrub, sharp-tip); 21 of the
     // 27 slim-grass pieces that match no blade (seeds 1-2) keep < 20 %. 0 = off.
     float minInteriorFraction = 0.2f;
-    float curlTurn_deg = 150.0f;         // CurlsSideways when the centre line turns more
-    float overlapWidthRatio = 2.2f;      // Overlapping when this much wider than the median
+    float curlTurn_deg = 150.0f;     // CurlsSideways when the centre line turns more
+    float overlapWidthRatio = 2.2f;  // Overlapping when this much wider than the median
     // Overlapping when a blade's contour dips between two tips by at least this share of the
     // cut threshold: too shallow to cut, deep enough for two blades that touch (measured: no
     // clean leaf piece at 0-1x noise reaches 0.01 of it; merged touching blades 0.76).
