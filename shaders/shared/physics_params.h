@@ -22,7 +22,7 @@ struct PhysicsParamsGpu {
     vec4 gravityMix_dt;     // x mass m (scale), y t in [0,1] (D -> C), z dt (s), w time (s)
     vec4 windWave;          // xyz wave direction (unit, world), w amplitude (m/s)
     vec4 windSource;        // xyz point source (world, m), w amplitude (m/s)
-    vec4 windShape;         // x wave length (m), y wave frequency (Hz), z source radius (m), w unused
+    vec4 windShape;         // x wavelength (m), y wave frequency (Hz), z source radius (m), w -
     vec4 collision;         // x eta decay a (1/s), y recovery floor, z eta gain, w unused
     uvec4 counts;           // x blades, y colliders, z PHYSICS_LENGTH_*, w unused
 };
