@@ -118,7 +118,7 @@ void addFlag(BladeCluster& cluster, BladeFlag flag, std::string reason) {
 }
 
 void flagBlades(std::span<BladeContour> blades, const BladeCluster& cluster, cv::Size frameSize,
-                const SegmenterParams& params) {
+                const SegmenterParams& params, float raggedness) {
     std::vector<float> widths;
     // Enclosed gaps of the cluster (holes the clean-up kept): the blades around them cross.
     cv::Mat1b holes(frameSize, std::uint8_t{0});
@@ -158,7 +158,8 @@ void flagBlades(std::span<BladeContour> blades, const BladeCluster& cluster, cv:
             addFlag(blade, BladeFlag::TooThin,
                     "mean width " + fixed(width) + " px < " + fixed(params.minResolvableWidth_px) +
                         " px: narrower than the sensor resolves; widths are unreliable");
-        } else if (params.minInteriorFraction > 0.f && area > 0.0) {
+        } else if (params.minInteriorFraction > 0.f && raggedness >= params.raggedEdges &&
+                   area > 0.0) {
             const double share = interiorPixels(blade.mask) / area;
             if (share < params.minInteriorFraction)
                 addFlag(blade, BladeFlag::TooThin,

@@ -86,6 +86,7 @@ std::string SegmenterParams::problem() const {
         {"minPersistenceFraction", minPersistenceFraction, 0.f, 1.f},
         {"minResolvableWidth_px", minResolvableWidth_px, 0.f, 1000.f},
         {"minInteriorFraction", minInteriorFraction, 0.f, 1.f},
+        {"raggedEdges", raggedEdges, 0.f, 1.f},
         {"curlTurn_deg", curlTurn_deg, 0.f, 3600.f},
         {"overlapWidthRatio", overlapWidthRatio, 1.f, 1000.f},
         {"secondTipFraction", secondTipFraction, 0.f, 1.f},
@@ -143,7 +144,8 @@ double Segmentation::totalTime_ms() const {
 std::string Segmentation::summary() const {
     std::ostringstream s;
     s << blades.size() << " blade(s) in " << clusters.size() << " cluster(s), band [" << nearDepth_m
-      << ", " << farDepth_m << "] m";
+      << ", " << farDepth_m << "] m, edges ragged " << std::lround(1000.0 * edgeRaggedness) / 10.0
+      << " %";
     if (!noBladesReason.empty()) s << "; no blades found: " << noBladesReason;
     s << '\n';
     for (const auto& r : report) {
@@ -258,6 +260,7 @@ struct Segmenter::Impl {
             stage(out, "tip trails", &mask, [&](StageReport& r) {
                 trails = seg::recoverTipTrails(readings, params, mask, r);
                 region |= trails.box;
+                out.edgeRaggedness = trails.raggedness;
             });
         out.clusterMask = mask;
         stage(out, "contours", &local, [&](StageReport& r) {
@@ -267,7 +270,7 @@ struct Segmenter::Impl {
             for (auto& cluster : out.clusters) {
                 auto blades = seg::partitionCluster(cluster, mask, params,
                                                     static_cast<int>(out.blades.size()) + 1, r);
-                seg::flagBlades(blades, cluster, mask.size(), params);
+                seg::flagBlades(blades, cluster, mask.size(), params, trails.raggedness);
                 for (auto& b : blades) {
                     const auto tip = static_cast<size_t>(b.tipIndex);
                     b.tipOnTrail = tip < b.contour_px.size() && trails.holds(b.contour_px[tip]);

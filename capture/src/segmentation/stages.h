@@ -71,6 +71,9 @@ cv::Rect cleanUpRegion(const cv::Mat1b& mask, const SegmenterParams& params);
 struct TipTrails {
     cv::Rect box;
     cv::Mat1b added;
+    // Share of the pixels 2-3 px outside the mask that hold in-band readings: how ragged the
+    // sensor left the edges (Segmentation::edgeRaggedness). 0 when not measured.
+    float raggedness = 0.f;
     [[nodiscard]] bool holds(cv::Point frame_px) const {
         return box.contains(frame_px) && added(frame_px - box.tl()) != 0;
     }
@@ -95,8 +98,9 @@ std::vector<std::pair<int, float>> circularMinimaPersistence(std::span<const flo
 std::vector<float> smoothCircular(std::span<const float> signal, float sigma_samples);
 
 // blade_flags.cpp: per-blade flags with reasons (thin, curled, truncated, overlapping).
+// `raggedness`: Segmentation::edgeRaggedness (the interior-share TooThin test needs ragged edges).
 void flagBlades(std::span<BladeContour> blades, const BladeCluster& cluster, cv::Size frameSize,
-                const SegmenterParams& params);
+                const SegmenterParams& params, float raggedness);
 void addFlag(BladeContour& blade, BladeFlag flag, std::string reason);
 void addFlag(BladeCluster& cluster, BladeFlag flag, std::string reason);
 

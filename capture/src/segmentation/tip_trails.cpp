@@ -186,13 +186,15 @@ TipTrails recoverTipTrails(const cv::Mat1b& candidates, const SegmenterParams& p
     const double ringPixels = (cv::countNonZero(touching) - cv::countNonZero(inMask)) *
                               (linkRadius_px - 1.0) / linkRadius_px;
     const double ragged = ringPixels > 0.0 ? static_cast<double>(seeds.size()) / ringPixels : 0.0;
+    TipTrails result;
+    result.raggedness = static_cast<float>(ragged);
     if (ragged > params.tipTrailMaxRaggedness) {
         report.notes.push_back(
             "edges too ragged to follow tips: " + std::to_string(std::lround(100.0 * ragged)) +
             " % of the pixels 2-" + std::to_string(linkRadius_px) +
             " px outside the mask hold in-band readings (tipTrailMaxRaggedness " +
             std::to_string(std::lround(100.0 * params.tipTrailMaxRaggedness)) + " %)");
-        return {};
+        return result;
     }
     // Readings up to `gap` px apart belong to one trail. Groups are grown from the seeds only (a
     // flood fill over the sparse readings; labelling every component of the box cost 0.8 ms).
@@ -317,7 +319,7 @@ TipTrails recoverTipTrails(const cv::Mat1b& candidates, const SegmenterParams& p
                                " px from it: edge noise, not tips");
     if (accepted == 0) {
         report.notes.push_back("no tip trail found");
-        return {};
+        return result;
     }
     inMask.setTo(255, added);
     // A trail that runs beside its blade for a few pixels before it meets it encloses a sliver
@@ -330,7 +332,9 @@ TipTrails recoverTipTrails(const cv::Mat1b& candidates, const SegmenterParams& p
     report.notes.push_back(std::to_string(accepted) + " tip trail(s) of dotted in-band readings " +
                            "linked back onto the mask (" + std::to_string(pixels) + " px)");
     const cv::Rect addedBox = cv::boundingRect(added);
-    return {addedBox + box.tl(), added(addedBox).clone()};
+    result.box = addedBox + box.tl();
+    result.added = added(addedBox).clone();
+    return result;
 }
 
 }  // namespace meadow::capture::segmentation
