@@ -30,7 +30,7 @@ struct TipParams {
     float tangentFitFrom = 0.87f;
     // Longest extension, as a fraction of the visible skeleton's 3D length. 0.2 before the
     // segmenter's tip trails; with less of the tip missing, 0.15 overshoots less (nominal noise,
-    // leaf presets, seeds 1-3: tip RMS 11.0 / 8.1 / 9.5 mm at 0.2, 8.6 / 7.1 / 8.5 mm at 0.15).
+    // leaf presets, seeds 1-3: tip RMS 11.0 / 8.0 / 9.5 mm at 0.2, 8.6 / 7.1 / 8.5 mm at 0.15).
     float maxExtensionFraction = 0.15f;
     // The trend's slope must be negative by at least this many standard errors.
     float minSlopeSignificance = 2.f;
