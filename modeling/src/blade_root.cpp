@@ -199,7 +199,10 @@ BladeFit fitSegmentedBlade(const capture::Segmentation& segmentation, std::size_
     Skeleton skeleton = extractSkeleton(blade, frame, skeletonParams);
     if (params.tip.enabled) {
         TipParams tip = params.tip;
-        if (blade.tipOnTrail && tip.toEndOnTrail) tip.widthFitTo = 1.f;
+        if (blade.tipOnTrail) {
+            if (tip.toEndOnTrail) tip.widthFitTo = 1.f;
+            tip.maxExtensionFraction = std::min(tip.maxExtensionFraction, tip.maxExtensionOnTrail);
+        }
         extendSkeletonTip(skeleton, tip);
     }
     if (params.root.enabled) {

@@ -28,10 +28,19 @@ struct TipParams {
     // Part of the chain (from tangentFitFrom to the tip) whose points give the end tangent by a
     // least-squares line through them against arc length.
     float tangentFitFrom = 0.87f;
-    // Longest extension, as a fraction of the visible skeleton's 3D length. 0.2 before the
-    // segmenter's tip trails; with less of the tip missing, 0.15 overshoots less (nominal noise,
-    // leaf presets, seeds 1-3: tip RMS 11.0 / 8.0 / 9.5 mm at 0.2, 8.6 / 7.1 / 8.5 mm at 0.15).
-    float maxExtensionFraction = 0.15f;
+    // Longest extension, as a fraction of the visible skeleton's 3D length: 0.2 before the
+    // segmenter's tip trails; with less of the tip missing, shorter caps overshoot less. And for
+    // a blade whose tip lies on a trail (BladeContour::tipOnTrail) the visible end is within a
+    // pixel or two of the tip: maxExtensionOnTrail. Measured at nominal noise (leaf presets,
+    // seeds 1 / 2 / 3, 0.6-1.0 m), tip RMS (mm) for maxExtensionFraction / maxExtensionOnTrail:
+    // - 0.2 / 0.2: 11.0 / 8.0 / 9.5
+    // - 0.15 / 0.15: 8.6 / 7.1 / 8.5
+    // - 0.15 / 0 (trail tips not extended): 8.9 / 7.0 / 8.5
+    // - 0.15 / 0.05: 6.0 / 6.3 / 7.1
+    // - 0.1 / 0.05: 6.1 / 5.7 / 6.6 (the defaults)
+    // - 0.05 / 0.05: 7.1 / 6.7 / 7.1
+    float maxExtensionFraction = 0.1f;
+    float maxExtensionOnTrail = 0.05f;
     // The trend's slope must be negative by at least this many standard errors.
     float minSlopeSignificance = 2.f;
 };
