@@ -50,6 +50,20 @@ int enclosedHoles(const cv::Mat1b& mask) {
     return holes;
 }
 
+// Runs the stage on the blade with `readings` and expects it to leave the mask as it is and to
+// say why in a note containing `why`.
+void expectNotFollowed(const cv::Mat1b& readings, const std::string& why) {
+    cv::Mat1b mask = bladeMask();
+    const cv::Mat1b before = mask.clone();
+    StageReport report;
+    const seg::TipTrails trails = seg::recoverTipTrails(readings, {}, mask, report);
+    EXPECT_TRUE(trails.added.empty());
+    EXPECT_EQ(cv::countNonZero(mask != before), 0);
+    bool toldWhy = false;
+    for (const auto& note : report.notes) toldWhy |= note.find(why) != std::string::npos;
+    EXPECT_TRUE(toldWhy) << "no note says '" << why << "'";
+}
+
 TEST(TipTrails, DottedReadingsPastTheTipAreLinkedBackOnePixelWide) {
     cv::Mat1b mask = bladeMask();
     cv::Mat1b readings = mask.clone();
@@ -68,39 +82,24 @@ TEST(TipTrails, DottedReadingsPastTheTipAreLinkedBackOnePixelWide) {
 }
 
 TEST(TipTrails, EdgeSpeckleBesideTheBladeIsNotATrail) {
-    cv::Mat1b mask = bladeMask();
-    cv::Mat1b readings = mask.clone();
+    cv::Mat1b readings = bladeMask();
     // Readings the lateral noise scattered 2-3 px off both sides, every eighth row (about 6 %
     // of the pixels there: nominal noise).
     for (int y = kBlade.y + 22; y < kBlade.br().y - 2; y += 8) {
         readings(y, kBlade.x - 2 - (y % 2)) = 255;
         readings(y, kBlade.br().x + 1 + (y % 2)) = 255;
     }
-    const cv::Mat1b before = mask.clone();
-    StageReport report;
-    const seg::TipTrails trails = seg::recoverTipTrails(readings, {}, mask, report);
-    EXPECT_TRUE(trails.added.empty());
-    EXPECT_EQ(cv::countNonZero(mask != before), 0);
-    bool toldWhy = false;
-    for (const auto& note : report.notes) toldWhy |= note.find("edge noise") != std::string::npos;
-    EXPECT_TRUE(toldWhy);
+    expectNotFollowed(readings, "edge noise");
 }
 
 TEST(TipTrails, ASurfaceOfReadingsBesideTheBladeIsNotFollowed) {
-    cv::Mat1b mask = bladeMask();
-    cv::Mat1b readings = mask.clone();
+    cv::Mat1b readings = bladeMask();
     // A 40 x 40 checkerboard of readings touching the blade's side: a leaf or ground behind,
     // far more readings than a line of the longest trail holds.
     for (int y = 100; y < 140; ++y)
         for (int x = kBlade.br().x + 1; x < kBlade.br().x + 41; ++x)
             if ((x + y) % 2 == 0) readings(y, x) = 255;
-    const cv::Mat1b before = mask.clone();
-    StageReport report;
-    seg::recoverTipTrails(readings, {}, mask, report);
-    EXPECT_EQ(cv::countNonZero(mask != before), 0);
-    bool toldWhy = false;
-    for (const auto& note : report.notes) toldWhy |= note.find("too wide") != std::string::npos;
-    EXPECT_TRUE(toldWhy);
+    expectNotFollowed(readings, "too wide");
 }
 
 TEST(TipTrails, ReadingsPastAGapWiderThanTipTrailGapAreLeftOut) {
@@ -117,21 +116,14 @@ TEST(TipTrails, ReadingsPastAGapWiderThanTipTrailGapAreLeftOut) {
 }
 
 TEST(TipTrails, ReadingsThatRunAlongTheBladesSideAreNotATip) {
-    cv::Mat1b mask = bladeMask();
-    cv::Mat1b readings = mask.clone();
+    cv::Mat1b readings = bladeMask();
     // A chain of readings 3 px off the blade's right side, rows 170 up to 110: speckle that
     // lateral noise strung along a side reaches as far from the mask as a tip does, but leaves
     // it sideways.
     const int column = kBlade.br().x + 2;
     for (int y = 170; y >= 110; y -= 2) readings(y, column) = 255;
     for (int x = column; x <= column + 8; x += 2) readings(110, x) = 255;  // and away from it
-    const cv::Mat1b before = mask.clone();
-    StageReport report;
-    seg::recoverTipTrails(readings, {}, mask, report);
-    EXPECT_EQ(cv::countNonZero(mask != before), 0);
-    bool toldWhy = false;
-    for (const auto& note : report.notes) toldWhy |= note.find("sideways") != std::string::npos;
-    EXPECT_TRUE(toldWhy);
+    expectNotFollowed(readings, "sideways");
 }
 
 TEST(TipTrails, ATrailThatBendsBesideItsBladeEnclosesNoHole) {
@@ -161,12 +153,7 @@ TEST(TipTrails, NotFollowedWhereEdgesAreTooRagged) {
     for (int y = 0; y < ring.rows; ++y)
         for (int x = 0; x < ring.cols; ++x)
             if (ring(y, x) && k++ % 3 == 0) readings(y, x) = 255;
-    const cv::Mat1b before = mask.clone();
-    StageReport report;
-    seg::recoverTipTrails(readings, {}, mask, report);
-    EXPECT_EQ(cv::countNonZero(mask != before), 0);
-    ASSERT_FALSE(report.notes.empty());
-    EXPECT_NE(report.notes.back().find("too ragged"), std::string::npos) << report.notes.back();
+    expectNotFollowed(readings, "too ragged");
 }
 
 TEST(TipTrails, SegmenterFollowsADottedTipAndSaysSo) {

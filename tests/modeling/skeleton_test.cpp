@@ -17,6 +17,19 @@ using test::fineIntrinsics;
 using test::makeBlade;
 using test::renderBlade;
 
+// A slim blade 0.12 m tall tilted in depth, for the thin-tip tests, with a wall this far away.
+constexpr float kSlimBladeWall_m = 0.9f;
+test::SyntheticBlade slimTiltedBlade() {
+    return makeBlade({0.f, 0.08f, 0.5f}, 0.12f, 0.2f, 0.004f, 0.3f);
+}
+// The image row `fraction` of the blade's image height below its tip.
+float rowBelowTip(const test::SyntheticBlade& b, float fraction) {
+    const float tipRow =
+        fineIntrinsics().project(b.spine_m.at(b.spine_m.parameterAtLengthFraction(1.f))).y;
+    const float baseRow = fineIntrinsics().project(b.spine_m.v0).y;
+    return tipRow + fraction * (baseRow - tipRow);
+}
+
 TEST(Skeleton, ResampleByArcLengthKeepsEndsAndSpacesEvenly) {
     const std::vector<glm::vec2> line{{0, 0}, {1, 0}, {1, 3}};  // length 4
     const auto r = resampleByArcLength(line, 5);
@@ -120,14 +133,11 @@ TEST(Skeleton, ThinTipWhoseLastReadingsFlyTowardTheWallStaysOnTheBlade) {
     // Kinect reads a tip narrower than its resolution. Every reading there flies, so a running
     // median along the chain is itself a flying pixel at the tip; the skeleton's tip must stay
     // within 3 mm of the true tip depth all the same.
-    constexpr float kFlyingFraction = 0.13f, kWall_m = 0.9f, kTolerance_m = 3e-3f;
-    const auto truth = makeBlade({0.f, 0.08f, 0.5f}, 0.12f, 0.2f, 0.004f, 0.3f);
+    constexpr float kFlyingFraction = 0.13f, kWall_m = kSlimBladeWall_m, kTolerance_m = 3e-3f;
+    const auto truth = slimTiltedBlade();
     auto view = renderBlade(truth, fineIntrinsics(), kWall_m);
     cv::Mat1w& depth = view.frame.depth_mm;
-    const float tipRow =
-        fineIntrinsics().project(truth.spine_m.at(truth.spine_m.parameterAtLengthFraction(1.f))).y;
-    const float baseRow = fineIntrinsics().project(truth.spine_m.v0).y;
-    const float flyingBelowRow = tipRow + kFlyingFraction * (baseRow - tipRow);
+    const float flyingBelowRow = rowBelowTip(truth, kFlyingFraction);
     cv::RNG rng(7);
     int flying = 0;
     for (int v = 0; v < depth.rows; ++v)
@@ -156,14 +166,11 @@ TEST(Skeleton, ReadingsOutsideTheTuftsDepthRangeAreNotTheBlades) {
     // one-pixel links between dotted readings, and they read the wall 0.4 m behind. Only the
     // depth range the segmentation kept (SkeletonParams::minDepth_m / maxDepth_m) tells them
     // from the blade.
-    constexpr float kWall_m = 0.9f, kTolerance_m = 3e-3f;
-    const auto truth = makeBlade({0.f, 0.08f, 0.5f}, 0.12f, 0.2f, 0.004f, 0.3f);
+    constexpr float kWall_m = kSlimBladeWall_m, kTolerance_m = 3e-3f;
+    const auto truth = slimTiltedBlade();
     auto view = renderBlade(truth, fineIntrinsics(), kWall_m);
     cv::Mat1w& depth = view.frame.depth_mm;
-    const float tipRow =
-        fineIntrinsics().project(truth.spine_m.at(truth.spine_m.parameterAtLengthFraction(1.f))).y;
-    const float baseRow = fineIntrinsics().project(truth.spine_m.v0).y;
-    const float linksBelowRow = tipRow + 0.33f * (baseRow - tipRow);
+    const float linksBelowRow = rowBelowTip(truth, 0.33f);
     cv::RNG rng(11);
     int links = 0;
     for (int v = 0; v < depth.rows; ++v)
