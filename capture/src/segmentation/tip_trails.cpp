@@ -30,9 +30,11 @@ constexpr int kMaxTrailWidth_px = 6;
 // that reaches maxArea_px past `added` on every side). Flood fills from `added`, capped, so the
 // cost follows the trails, not the view. Returns the pixels filled.
 int fillSlivers(cv::Mat1b& mask, const cv::Mat1b& added, int maxArea_px) {
-    cv::Mat1b seen(mask.size(), std::uint8_t{0});
+    // Which fill reached a pixel first (0: none). A fill that stopped early (too large, or at a
+    // side) leaves its pixels marked: a later fill that meets them is open too.
+    cv::Mat1i seenBy(mask.size(), 0);
     std::vector<cv::Point> region;
-    int filled = 0;
+    int filled = 0, fills = 0;
     const std::array<cv::Point, 4> kFour{{{1, 0}, {-1, 0}, {0, 1}, {0, -1}}};
     const cv::Rect inside({0, 0}, mask.size());
     for (int y = 0; y < mask.rows; ++y)
@@ -40,9 +42,10 @@ int fillSlivers(cv::Mat1b& mask, const cv::Mat1b& added, int maxArea_px) {
             if (!added(y, x)) continue;
             for (const cv::Point d : kFour) {
                 const cv::Point start = cv::Point(x, y) + d;
-                if (!inside.contains(start) || mask(start) || seen(start)) continue;
+                if (!inside.contains(start) || mask(start) || seenBy(start)) continue;
+                const int id = ++fills;
                 region.assign(1, start);
-                seen(start) = 255;
+                seenBy(start) = id;
                 bool open = false;
                 for (size_t head = 0; head < region.size() && !open; ++head) {
                     for (const cv::Point e : kFour) {
@@ -51,8 +54,12 @@ int fillSlivers(cv::Mat1b& mask, const cv::Mat1b& added, int maxArea_px) {
                             open = true;  // reaches a side
                             break;
                         }
-                        if (mask(q) || seen(q)) continue;
-                        seen(q) = 255;
+                        if (mask(q) || seenBy(q) == id) continue;
+                        if (seenBy(q) != 0) {
+                            open = true;  // joins a region already found open
+                            break;
+                        }
+                        seenBy(q) = id;
                         region.push_back(q);
                     }
                     open |= static_cast<int>(region.size()) > maxArea_px;
