@@ -107,11 +107,13 @@ glm::vec2 safeNormalize(glm::vec2 v, glm::vec2 fallback) {
     return len > 1e-6f ? v / len : fallback;
 }
 
-// Median of the valid depth readings (metres) inside the blade mask in a square window around
-// (u, v); NaN when there is none. Restricting to the mask keeps the background out; the median
-// keeps the minority of flying pixels on the blade's edge out.
+// Median of the valid depth readings (metres) inside the blade mask in a square window of
+// params.depthWindowRadius_px around (u, v), within [minDepth_m, maxDepth_m]; NaN when there is
+// none. Restricting to the mask keeps the background out; the median keeps the minority of
+// flying pixels on the blade's edge out.
 float windowDepth_m(const capture::DepthFrame& frame, const capture::BladeContour& blade,
-                    glm::vec2 p_px, int r, const SkeletonParams& params) {
+                    glm::vec2 p_px, const SkeletonParams& params) {
+    const int r = params.depthWindowRadius_px;
     const float lowest_mm = params.minDepth_m * 1e3f;
     const float highest_mm = params.maxDepth_m > 0.f ? params.maxDepth_m * 1e3f : 1e9f;
     const bool useMask = !blade.mask.empty();
@@ -378,8 +380,7 @@ Skeleton extractSkeleton(const capture::BladeContour& blade, const capture::Dept
     const int n = static_cast<int>(s.midline_px.size());
 
     std::vector<float> z(static_cast<std::size_t>(n));
-    for (int i = 0; i < n; ++i)
-        z[i] = windowDepth_m(frame, blade, s.midline_px[i], params.depthWindowRadius_px, params);
+    for (int i = 0; i < n; ++i) z[i] = windowDepth_m(frame, blade, s.midline_px[i], params);
     s.filledDepths = rejectAndFill(z, params.maxDepthJump_m);
     if (s.filledDepths >= n)
         throw ModelingError(

@@ -270,7 +270,7 @@ struct Segmenter::Impl {
             for (auto& cluster : out.clusters) {
                 auto blades = seg::partitionCluster(cluster, mask, params,
                                                     static_cast<int>(out.blades.size()) + 1, r);
-                seg::flagBlades(blades, cluster, mask.size(), params, trails.raggedness);
+                seg::flagBlades(blades, cluster, mask.size(), params, out.edgeRaggedness);
                 for (auto& b : blades) {
                     const auto tip = static_cast<size_t>(b.tipIndex);
                     b.tipOnTrail = tip < b.contour_px.size() && trails.holds(b.contour_px[tip]);

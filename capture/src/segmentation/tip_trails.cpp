@@ -111,7 +111,7 @@ std::vector<cv::Point> alongTrail(const std::vector<cv::Point>& trail, const cv:
 // mask there fills about half the disc, and the readings run along the side.
 template <class Distance>
 bool continuesTheMask(const cv::Mat1b& mask, cv::Point at, const std::vector<cv::Point>& trail,
-                      Distance distance, const cv::Rect& local) {
+                      Distance distance) {
     double sx = 0.0, sy = 0.0;
     int inside = 0, disc = 0;
     for (int dy = -kTipRadius_px; dy <= kTipRadius_px; ++dy)
@@ -127,9 +127,8 @@ bool continuesTheMask(const cv::Mat1b& mask, cv::Point at, const std::vector<cv:
     if (inside == 0 || inside > kTipCover * disc) return false;
     const cv::Point2d behind = cv::Point2d(at) - cv::Point2d(sx / inside, sy / inside);
     const cv::Point far =
-        *std::max_element(trail.begin(), trail.end(), [&](cv::Point a, cv::Point b) {
-            return distance(a - local.tl()) < distance(b - local.tl());
-        });
+        *std::max_element(trail.begin(), trail.end(),
+                          [&](cv::Point a, cv::Point b) { return distance(a) < distance(b); });
     const cv::Point2d out = cv::Point2d(far) - cv::Point2d(at);
     const double norms = cv::norm(behind) * cv::norm(out);
     return norms > 0.0 && behind.dot(out) >= std::cos(kMaxTurn_deg * CV_PI / 180.0) * norms;
@@ -166,13 +165,12 @@ TipTrails recoverTipTrails(const cv::Mat1b& candidates, const SegmenterParams& p
                    cv::getStructuringElement(cv::MORPH_RECT, {2 * radius + 1, 2 * radius + 1}));
         return z;
     };
+    const cv::Rect inBox({0, 0}, box.size());
     const auto adjacent = [&](cv::Point p) {
         for (int dy = -1; dy <= 1; ++dy)
-            for (int dx = -1; dx <= 1; ++dx) {
-                const cv::Point q = p + cv::Point(dx, dy);
-                if (q.x >= 0 && q.y >= 0 && q.x < box.width && q.y < box.height && inMask(q))
+            for (int dx = -1; dx <= 1; ++dx)
+                if (const cv::Point q = p + cv::Point(dx, dy); inBox.contains(q) && inMask(q))
                     return true;
-            }
         return false;
     };
     const cv::Mat1b touching = zone(linkRadius_px);
@@ -220,11 +218,10 @@ TipTrails recoverTipTrails(const cv::Mat1b& candidates, const SegmenterParams& p
     std::vector<cv::Point> queue;
     for (const cv::Point seed : seeds) {
         if (seen(seed)) continue;
-        const int x = seed.x, y = seed.y;
         Group g;
         bool wide = false;
-        queue.assign(1, {x, y});
-        seen(y, x) = 255;
+        queue.assign(1, seed);
+        seen(seed) = 255;
         for (size_t head = 0; head < queue.size() && !wide; ++head) {
             const cv::Point p = queue[head];
             g.bounds |= cv::Rect(p, cv::Size(1, 1));
@@ -233,9 +230,7 @@ TipTrails recoverTipTrails(const cv::Mat1b& candidates, const SegmenterParams& p
             for (int dy = -step; dy <= step; ++dy)
                 for (int dx = -step; dx <= step; ++dx) {
                     const cv::Point q = p + cv::Point(dx, dy);
-                    if (q.x < 0 || q.y < 0 || q.x >= box.width || q.y >= box.height || !loose(q) ||
-                        seen(q))
-                        continue;
+                    if (!inBox.contains(q) || !loose(q) || seen(q)) continue;
                     seen(q) = 255;
                     queue.push_back(q);
                 }
@@ -256,7 +251,7 @@ TipTrails recoverTipTrails(const cv::Mat1b& candidates, const SegmenterParams& p
         for (int dy = -window; dy <= window; ++dy)
             for (int dx = -window; dx <= window; ++dx) {
                 const cv::Point q = p + cv::Point(dx, dy);
-                if (q.x < 0 || q.y < 0 || q.x >= box.width || q.y >= box.height || !on(q)) continue;
+                if (!inBox.contains(q) || !on(q)) continue;
                 if (const int d2 = dx * dx + dy * dy; d2 < bestD2) {
                     bestD2 = d2;
                     best = q;
@@ -266,9 +261,9 @@ TipTrails recoverTipTrails(const cv::Mat1b& candidates, const SegmenterParams& p
     };
     int accepted = 0, rejectedShort = 0, rejectedSideways = 0, pixels = 0;
     for (auto& group : groups) {
+        // It starts at the mask (its seed, which does not touch it, is the first reading of its
+        // trail) and must reach far enough from it.
         auto& trail = group.trail;
-        if (trail.empty()) continue;
-        // It starts at the mask (its seed) and must reach far enough from it.
         if (!group.reaches) {
             ++rejectedShort;
             continue;
@@ -277,16 +272,16 @@ TipTrails recoverTipTrails(const cv::Mat1b& candidates, const SegmenterParams& p
         // then the others in the order a flood fill over the trail reaches them. Each links to
         // the nearest pixel already on the trail or on the mask with a one-pixel line, so the
         // trail stays connected to its blade.
-        const cv::Rect local = grownWithin(group.bounds, window + 1, cv::Rect({0, 0}, box.size()));
+        const cv::Rect local = grownWithin(group.bounds, window + 1, inBox);
         cv::Mat1f distance;
         cv::distanceTransform(~inMask(local), distance, cv::DIST_L2, cv::DIST_MASK_5);
-        trail = alongTrail(
-            trail, local, [&](cv::Point p) { return distance(p - local.tl()); }, step);
+        const auto distanceOf = [&](cv::Point p) { return distance(p - local.tl()); };
+        trail = alongTrail(trail, local, distanceOf, step);
         const int before = cv::countNonZero(added(local));
         // A trail meets its blade once, where it leaves the mask: a second link to the mask
         // elsewhere would close a loop (taken for crossing blades) or add a spur beside it.
         cv::Point attachedAt = nearest(trail.front(), inMask);
-        if (attachedAt.x >= 0 && !continuesTheMask(inMask, attachedAt, trail, distance, local)) {
+        if (attachedAt.x >= 0 && !continuesTheMask(inMask, attachedAt, trail, distanceOf)) {
             ++rejectedSideways;
             continue;
         }
