@@ -118,9 +118,10 @@ void addCaptureCommand(CLI::App& app) {
         ->default_val("ransac")
         ->check(CLI::IsMember({"ransac", "organized", "none"}));
     cmd->add_option("--edge-smoothing", args->options.segmenter.edgeSmoothingSigma_px,
-                    "Sigma in pixels of the Gaussian that smooths the mask's ragged edge before "
-                    "the contour (0 = off; parts under 3 px wide are never smoothed)")
-        ->default_val(1.0f)
+                    "Sigma, in contour points, of the Gaussian that smooths the mask's ragged edge "
+                    "along its contour (0 = off; no point moves more than 1 px, tips and valleys "
+                    "between blades stay)")
+        ->default_val(4.0f)
         ->check(CLI::Range(0.f, 20.f));
     cmd->add_flag(
         "--keep-flagged", args->options.keepFlagged,

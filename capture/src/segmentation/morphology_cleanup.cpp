@@ -1,6 +1,6 @@
 // Morphological clean-up of the foreground mask: closing bridges one-pixel dropouts along thin
-// blades, a Gaussian smooths the ragged boundary that lateral sensor noise leaves, small regions
-// are speckle, small enclosed holes are missing readings. Larger holes are kept: a loop enclosed
+// blades, the edge is smoothed along the contour (contour_smoothing.cpp), small regions are
+// speckle, small enclosed holes are missing readings. Larger holes are kept: a loop enclosed
 // by blades means blades cross (flagged in contour_extraction.cpp).
 #include <cmath>
 #include <opencv2/imgproc.hpp>
@@ -12,11 +12,11 @@ namespace meadow::capture::segmentation {
 cv::Rect cleanUpRegion(const cv::Mat1b& mask, const SegmenterParams& params) {
     const cv::Rect box = cv::boundingRect(mask);
     if (box.empty()) return box;
-    // Closing and opening reach their kernel's radius each way; the Gaussian of an 8-bit image
-    // reaches 3 sigma (OpenCV's kernel size for CV_8U); the thin-part test's 3x3 opening and
-    // dilation reach 2 px; one more pixel keeps a background ring around everything.
+    // Closing and opening reach their kernel's radius each way; edge smoothing moves the edge
+    // out by at most its shift and half a pixel; one more pixel keeps a background ring around
+    // everything.
     const int reach_px = params.closeKernel_px / 2 + params.openKernel_px / 2 +
-                         static_cast<int>(std::ceil(3.f * params.edgeSmoothingSigma_px)) + 2 + 1;
+                         static_cast<int>(std::ceil(params.edgeSmoothingMaxShift_px + 0.5f)) + 1;
     return grownWithin(box, reach_px, cv::Rect(0, 0, mask.cols, mask.rows));
 }
 
@@ -34,22 +34,7 @@ void cleanUpMask(const SegmenterParams& params, cv::Mat1b& mask, StageReport& re
         report.notes.push_back("opening dropped " +
                                std::to_string(before - cv::countNonZero(mask)) + " px");
     }
-    if (params.edgeSmoothingSigma_px > 0.f) {
-        const int before = cv::countNonZero(mask);
-        cv::Mat1b blurred;
-        cv::GaussianBlur(mask, blurred, {0, 0}, params.edgeSmoothingSigma_px);
-        // Structures under 3 px wide (what a 3x3 opening removes, and not within a pixel of
-        // what it keeps) are kept as they are: the half-way threshold would erase them.
-        const cv::Mat cross = cv::getStructuringElement(cv::MORPH_ELLIPSE, {3, 3});
-        cv::Mat1b thick;
-        cv::morphologyEx(mask, thick, cv::MORPH_OPEN, cross);
-        cv::dilate(thick, thick, cross);
-        mask = (blurred >= 128) | (mask & ~thick);  // 128: the half-way level of a 0/255 mask
-        report.notes.push_back("edge smoothing (sigma " +
-                               std::to_string(params.edgeSmoothingSigma_px).substr(0, 4) +
-                               " px): " + std::to_string(before) + " -> " +
-                               std::to_string(cv::countNonZero(mask)) + " px");
-    }
+    smoothContours(mask, params.edgeSmoothingSigma_px, params.edgeSmoothingMaxShift_px, report);
     // Small regions.
     cv::Mat1i labels;
     cv::Mat stats, centroids;

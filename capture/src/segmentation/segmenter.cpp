@@ -80,6 +80,7 @@ std::string SegmenterParams::problem() const {
         {"baseBandFraction", baseBandFraction, 0.f, 1.f},
         {"smoothingSigma_px", smoothingSigma_px, 0.f, 1000.f},
         {"edgeSmoothingSigma_px", edgeSmoothingSigma_px, 0.f, 20.f},
+        {"edgeSmoothingMaxShift_px", edgeSmoothingMaxShift_px, 0.f, 5.f},
         {"tipTrailMinReach_px", tipTrailMinReach_px, 0.f, 1000.f},
         {"tipTrailMaxRaggedness", tipTrailMaxRaggedness, 0.f, 1.f},
         {"minPersistence_px", minPersistence_px, 0.f, 1e5f},

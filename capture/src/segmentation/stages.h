@@ -56,8 +56,13 @@ std::optional<cv::Vec4f> removePlanes(const cv::Mat1w& depth_mm, const Intrinsic
 void removeOutliers(const cv::Mat1w& depth_mm, const Intrinsics& intrinsics,
                     const SegmenterParams& params, cv::Mat1b& mask, StageReport& report);
 
-// morphology_cleanup.cpp: closing, optional opening, small regions dropped, small holes filled.
+// morphology_cleanup.cpp: closing, optional opening, edge smoothing, small regions dropped,
+// small holes filled.
 void cleanUpMask(const SegmenterParams& params, cv::Mat1b& mask, StageReport& report);
+// contour_smoothing.cpp: every contour of the mask averaged along its length (Gaussian of
+// sigma_px points), no point moved more than maxShift_px, tips and valleys kept, and the mask
+// redrawn from them. 0 for either = off.
+void smoothContours(cv::Mat1b& mask, float sigma_px, float maxShift_px, StageReport& report);
 // The part of the frame the clean-up and everything after it can touch: the mask's bounding
 // box grown by the farthest any clean-up filter reaches, and one pixel more so that a hole
 // touches the region's border only if it is open to the frame's background. Clean-up inside it
