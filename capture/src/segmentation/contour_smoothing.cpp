@@ -53,7 +53,7 @@ float power(float x, int n) {
 
 // The edge the contour's pixels stand for: the points averaged along the contour (closed) as
 // the file comment says, then moved out to the edge (kHalfPixel).
-std::vector<cv::Point2f> smoothedEdge(const std::vector<cv::Point>& contour,
+std::vector<cv::Point2f> smoothedEdge(const std::vector<cv::Point>& contour, bool hole,
                                       const std::vector<float>& kernel, float maxShift_px) {
     const int n = static_cast<int>(contour.size());
     const int radius = n >= static_cast<int>(kernel.size()) ? static_cast<int>(kernel.size() / 2)
@@ -91,9 +91,10 @@ std::vector<cv::Point2f> smoothedEdge(const std::vector<cv::Point>& contour,
         if (len > maxShift_px) d *= maxShift_px / len;
         s[static_cast<size_t>(i)] = p[c] + d;
     }
-    // findContours traces outer contours and holes in opposite senses, so the foreground lies on
-    // the same side of both; the sign of the oriented area says which side that is.
-    const float side = cv::contourArea(contour, /*oriented=*/true) > 0 ? 1.f : -1.f;
+    // Away from the foreground: out of an outer contour's polygon, into a hole's. The sign of
+    // the oriented area says which way the polygon runs, hence which side is its inside.
+    const float side =
+        (cv::contourArea(contour, /*oriented=*/true) > 0 ? 1.f : -1.f) * (hole ? -1.f : 1.f);
     std::vector<cv::Point2f> edge(contour.size());
     for (int i = 0; i < n; ++i) {
         const cv::Point2f t =
@@ -151,15 +152,16 @@ void fillPixelCentresInside(cv::Mat1b& mask, const std::vector<std::vector<cv::P
 void smoothContours(cv::Mat1b& mask, float sigma_px, float maxShift_px, StageReport& report) {
     if (sigma_px <= 0.f || maxShift_px <= 0.f) return;
     std::vector<std::vector<cv::Point>> contours;
-    cv::findContours(mask.clone(), contours, cv::RETR_LIST, cv::CHAIN_APPROX_NONE);
+    std::vector<cv::Vec4i> hierarchy;  // two levels: outer contours, and holes with a parent
+    cv::findContours(mask.clone(), contours, hierarchy, cv::RETR_CCOMP, cv::CHAIN_APPROX_NONE);
     const auto kernel = gaussianKernel(sigma_px, static_cast<int>(std::ceil(3.f * sigma_px)));
     std::vector<std::vector<cv::Point2f>> edges;
     std::vector<std::vector<cv::Point>> specks;  // one or two pixels: no area to fill
-    for (auto& c : contours) {
-        if (c.size() < 3)
-            specks.push_back(std::move(c));
+    for (size_t i = 0; i < contours.size(); ++i) {
+        if (contours[i].size() < 3)
+            specks.push_back(std::move(contours[i]));
         else
-            edges.push_back(smoothedEdge(c, kernel, maxShift_px));
+            edges.push_back(smoothedEdge(contours[i], hierarchy[i][3] >= 0, kernel, maxShift_px));
     }
     const int before = cv::countNonZero(mask);
     const cv::Mat1b original = mask.clone();
@@ -168,13 +170,18 @@ void smoothContours(cv::Mat1b& mask, float sigma_px, float maxShift_px, StageRep
     for (const auto& speck : specks)
         for (const auto& p : speck) mask(p) = 255;
     // Parts under 3 px wide (what a 3x3 opening removes, and not within a pixel of what it
-    // keeps) stay as they were: a one-pixel line's staircase is its shape, not jitter, and the
-    // straightened line would drop its corner pixels.
+    // keeps) stay as they were, foreground and background alike: a one-pixel line's staircase
+    // is its shape, not jitter, and the straightened line would drop its corner pixels; a slit
+    // between two blades would close where both its sides moved in.
     const cv::Mat cross = cv::getStructuringElement(cv::MORPH_ELLIPSE, {3, 3});
-    cv::Mat1b thick;
-    cv::morphologyEx(original, thick, cv::MORPH_OPEN, cross);
-    cv::dilate(thick, thick, cross);
-    mask |= original & ~thick;
+    const auto thinParts = [&](const cv::Mat1b& m) {
+        cv::Mat1b thick;
+        cv::morphologyEx(m, thick, cv::MORPH_OPEN, cross);
+        cv::dilate(thick, thick, cross);
+        return cv::Mat1b(m & ~thick);
+    };
+    mask |= thinParts(original);
+    mask &= ~thinParts(~original);
     report.notes.push_back("edge smoothing (sigma " + std::to_string(sigma_px).substr(0, 4) +
                            " px along the contour): " + std::to_string(before) + " -> " +
                            std::to_string(cv::countNonZero(mask)) + " px");
