@@ -61,13 +61,14 @@ constexpr int kWidthComparisonSamples = 50;
 // With the base on the cluster's lowest row and dropped onto the ground plane (blade_root.h):
 // mean v0 error 3.8 mm (seed 1; seeds 2 and 3: 6.6 and 6.4 mm), was 7.3 / 8.5 / 9.8 mm. Seed 2
 // measures 8.1 mm since the shorter tip extension: one fragment of a blade cut in two is no
-// longer rooted.
+// longer rooted. With the edge smoothed along the contour: 3.7 / 8.0 / 6.3 mm.
 constexpr float kMaxLeafV0Error_mm = 8.f;
 // With the tip extension (blade_tip.h): measured 4.2 %, 12.9 mm and 10.3 % (seed 1); without it
 // 11.8 %, 24.8 mm and 14.6 %. With the segmenter's tip trails, the readings held to the
 // tuft's depth range and the shorter extension caps (blade_tip.h): height error
 // 1.9 / 3.6 / 3.3 % and tip RMS 6.1 / 5.7 / 6.6 mm (seeds 1 / 2 / 3), were 3.9 / 3.7 / 5.7 %
-// and 12.2 / 8.2 / 18.0 mm.
+// and 12.2 / 8.2 / 18.0 mm. With the edge smoothed along the contour: 1.8 / 3.6 / 3.2 % and
+// 5.9 / 5.8 / 6.2 mm.
 constexpr float kMaxLeafHeightError = 0.05f;
 constexpr float kMaxLeafTipRms_mm = 10.f;
 
@@ -235,7 +236,8 @@ TEST(ModelingAccuracy, LeafBladesAreRootedAtTheirTrueRootAtNominalNoiseAndTarget
     EXPECT_LE(leaves.tipRms_mm(), kMaxLeafTipRms_mm);
     EXPECT_LE(leaves.meanWidthFraction(), kMaxWidthMaeFraction);
     EXPECT_GE(3 * all.fitted,
-              all.truth);  // measured 78 of 87; the rest are flagged or unmatched upstream
+              all.truth);  // measured 59 of 87 (57 of the 60 leaves): most slim-grass pieces
+                           // are flagged too-thin upstream, the rest unmatched
     std::cout << "  targets (not asserted, see the header): tip RMS <= " << kMaxTipRms_mm
               << " mm, height error <= " << 100.f * kMaxHeightError
               << " %, width MAE <= " << 100.f * kMaxWidthMaeFraction << " %\n";
