@@ -8,13 +8,14 @@
 #include <string>
 #include <vector>
 
+#include "test_util.h"
+
 namespace meadow::runtime::test {
 
+// Private to this process: ctest runs each test in its own process, several at once, and a
+// folder shared by name was removed under a test that was still reading it.
 inline std::filesystem::path freshTestDirectory(const std::string& name) {
-    const auto dir = std::filesystem::temp_directory_path() / ("meadow_runtime_test_" + name);
-    std::filesystem::remove_all(dir);
-    std::filesystem::create_directories(dir);
-    return dir;
+    return meadow::test::freshTempDir("runtime_test_" + name);
 }
 
 // A .gltf with its buffer in "<name>.bin" next to it: positions (m) and triangles.
