@@ -118,7 +118,7 @@ void addFlag(BladeCluster& cluster, BladeFlag flag, std::string reason) {
 }
 
 void flagBlades(std::span<BladeContour> blades, const BladeCluster& cluster, cv::Size frameSize,
-                const SegmenterParams& params, float raggedness) {
+                const SensedExtent& sensed, const SegmenterParams& params, float raggedness) {
     std::vector<float> widths;
     // Enclosed gaps of the cluster (holes the clean-up kept): the blades around them cross.
     cv::Mat1b holes(frameSize, std::uint8_t{0});
@@ -136,17 +136,15 @@ void flagBlades(std::span<BladeContour> blades, const BladeCluster& cluster, cv:
         cv::dilate(holes, holes, cv::Mat(), {-1, -1}, kHoleNeighbourhood_px);
     }
     for (auto& blade : blades) {
-        // Truncated: the contour runs along the image border.
-        const auto onBorder =
-            std::count_if(blade.contour_px.begin(), blade.contour_px.end(), [&](cv::Point p) {
-                return p.x == 0 || p.y == 0 || p.x == frameSize.width - 1 ||
-                       p.y == frameSize.height - 1;
-            });
+        // Truncated: the contour runs along the image border, or along the band by a border
+        // where the sensor read nothing.
+        const auto onBorder = std::count_if(blade.contour_px.begin(), blade.contour_px.end(),
+                                            [&](cv::Point p) { return sensed.atEdge(p); });
         if (onBorder > 0)
-            addFlag(
-                blade, BladeFlag::Truncated,
-                std::to_string(onBorder) +
-                    " contour px on the image border: the blade may continue outside the frame");
+            addFlag(blade, BladeFlag::Truncated,
+                    std::to_string(onBorder) +
+                        " contour px on the image border or on the sensor's band of no readings "
+                        "along it: the blade may continue where nothing was sensed");
         // Width = area / centre-line length.
         const auto mid = centreLine(blade);
         double length = 0.0;

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <numeric>
 #include <opencv2/core.hpp>
+#include <optional>
 #include <sstream>
 
 #include "meadow/capture/error.h"
@@ -240,12 +241,14 @@ struct Segmenter::Impl {
             stage(out, "outlier removal", &mask, [&](StageReport& r) {
                 seg::removeOutliers(depth_mm, intrinsics, params, mask, r);
             });
-        return fromMask(std::move(mask), std::move(out), inBand);
+        return fromMask(std::move(mask), std::move(out), inBand, seg::SensedExtent::of(depth_mm));
     }
 
     // `readings`: the in-band readings before outlier removal (empty for a given mask).
-    Segmentation fromMask(cv::Mat1b mask, Segmentation out,
-                          const cv::Mat1b& readings = cv::Mat1b()) const {
+    // `sensed`: where the sensor read anything (the whole frame for a given mask).
+    Segmentation fromMask(cv::Mat1b mask, Segmentation out, const cv::Mat1b& readings = cv::Mat1b(),
+                          std::optional<seg::SensedExtent> sensed = std::nullopt) const {
+        if (!sensed) sensed = seg::SensedExtent::whole(mask.size());
         // Clean-up and contours work inside the region the mask can reach, not the whole frame:
         // a tuft covers a small part of it, and the results are the same (cleanUpRegion).
         const cv::Rect cleaned = seg::cleanUpRegion(mask, params);
@@ -271,7 +274,7 @@ struct Segmenter::Impl {
             for (auto& cluster : out.clusters) {
                 auto blades = seg::partitionCluster(cluster, mask, params,
                                                     static_cast<int>(out.blades.size()) + 1, r);
-                seg::flagBlades(blades, cluster, mask.size(), params, out.edgeRaggedness);
+                seg::flagBlades(blades, cluster, mask.size(), *sensed, params, out.edgeRaggedness);
                 for (auto& b : blades) {
                     const auto tip = static_cast<size_t>(b.tipIndex);
                     b.tipOnTrail = tip < b.contour_px.size() && trails.holds(b.contour_px[tip]);

@@ -104,8 +104,20 @@ std::vector<float> smoothCircular(std::span<const float> signal, float sigma_sam
 
 // blade_flags.cpp: per-blade flags with reasons (thin, curled, truncated, overlapping).
 // `raggedness`: Segmentation::edgeRaggedness (the interior-share TooThin test needs ragged edges).
+// sensed_extent.cpp: per row and column, the first and last pixel with a reading, where the
+// sensor's band of no readings along an image border (at most a tenth of the frame) ends.
+struct SensedExtent {
+    std::vector<int> firstX, lastX;             // per row
+    std::vector<int> firstY, lastY;             // per column
+    static SensedExtent whole(cv::Size frame);  // every pixel sensed (a mask, no depth)
+    static SensedExtent of(const cv::Mat1w& depth_mm);
+    // Whether p lies within a pixel of the image border or of such a band.
+    [[nodiscard]] bool atEdge(cv::Point p) const;
+};
+
+// blade_flags.cpp. `sensed`: where a contour counts as truncated (SensedExtent::atEdge).
 void flagBlades(std::span<BladeContour> blades, const BladeCluster& cluster, cv::Size frameSize,
-                const SegmenterParams& params, float raggedness);
+                const SensedExtent& sensed, const SegmenterParams& params, float raggedness);
 void addFlag(BladeContour& blade, BladeFlag flag, std::string reason);
 void addFlag(BladeCluster& cluster, BladeFlag flag, std::string reason);
 
