@@ -26,21 +26,13 @@ std::vector<float> smoothCircular(std::span<const float> signal, float sigma_sam
     if (sigma_samples <= 0.f || n < 3) return {signal.begin(), signal.end()};
     const int half =
         std::min(n / 2, static_cast<int>(std::ceil(kGaussianSupport_sigmas * sigma_samples)));
-    std::vector<float> kernel(static_cast<size_t>(2 * half + 1));
-    float sum = 0.f;
-    for (int k = -half; k <= half; ++k) {
-        const float w =
-            std::exp(-0.5f * static_cast<float>(k * k) / (sigma_samples * sigma_samples));
-        kernel[static_cast<size_t>(k + half)] = w;
-        sum += w;
-    }
+    const cv::Mat1f kernel = cv::getGaussianKernel(2 * half + 1, sigma_samples, CV_32F);
     std::vector<float> out(signal.size(), 0.f);
     for (int i = 0; i < n; ++i) {
         float acc = 0.f;
         for (int k = -half; k <= half; ++k)
-            acc +=
-                kernel[static_cast<size_t>(k + half)] * signal[static_cast<size_t>(wrap(i + k, n))];
-        out[static_cast<size_t>(i)] = acc / sum;
+            acc += kernel(k + half) * signal[static_cast<size_t>(wrap(i + k, n))];
+        out[static_cast<size_t>(i)] = acc;
     }
     return out;
 }

@@ -33,18 +33,6 @@ constexpr int kTangentSharpness = 4;
 // valleys off (up to 0.02 lower than 0.5).
 constexpr float kMinWeightShare = 0.5f;
 
-std::vector<float> gaussianKernel(float sigma, int radius) {
-    std::vector<float> k(static_cast<size_t>(2 * radius + 1));
-    float sum = 0.f;
-    for (int i = -radius; i <= radius; ++i) {
-        const float w = std::exp(-0.5f * static_cast<float>(i * i) / (sigma * sigma));
-        k[static_cast<size_t>(i + radius)] = w;
-        sum += w;
-    }
-    for (auto& w : k) w /= sum;
-    return k;
-}
-
 float power(float x, int n) {
     float r = 1.f;
     for (int i = 0; i < n; ++i) r *= x;
@@ -154,7 +142,9 @@ void smoothContours(cv::Mat1b& mask, float sigma_px, float maxShift_px, StageRep
     std::vector<std::vector<cv::Point>> contours;
     std::vector<cv::Vec4i> hierarchy;  // two levels: outer contours, and holes with a parent
     cv::findContours(mask.clone(), contours, hierarchy, cv::RETR_CCOMP, cv::CHAIN_APPROX_NONE);
-    const auto kernel = gaussianKernel(sigma_px, static_cast<int>(std::ceil(3.f * sigma_px)));
+    const int radius = static_cast<int>(std::ceil(3.f * sigma_px));
+    const cv::Mat1f gaussian = cv::getGaussianKernel(2 * radius + 1, sigma_px, CV_32F);
+    const std::vector<float> kernel(gaussian.begin(), gaussian.end());
     std::vector<std::vector<cv::Point2f>> edges;
     std::vector<std::vector<cv::Point>> specks;  // one or two pixels: no area to fill
     for (size_t i = 0; i < contours.size(); ++i) {
