@@ -5,7 +5,6 @@
 #include <cmath>
 #include <numeric>
 #include <opencv2/core.hpp>
-#include <optional>
 #include <sstream>
 
 #include "meadow/capture/error.h"
@@ -241,14 +240,13 @@ struct Segmenter::Impl {
             stage(out, "outlier removal", &mask, [&](StageReport& r) {
                 seg::removeOutliers(depth_mm, intrinsics, params, mask, r);
             });
-        return fromMask(std::move(mask), std::move(out), inBand, seg::SensedExtent::of(depth_mm));
+        return fromMask(std::move(mask), std::move(out), seg::SensedExtent::of(depth_mm), inBand);
     }
 
-    // `readings`: the in-band readings before outlier removal (empty for a given mask).
     // `sensed`: where the sensor read anything (the whole frame for a given mask).
-    Segmentation fromMask(cv::Mat1b mask, Segmentation out, const cv::Mat1b& readings = cv::Mat1b(),
-                          std::optional<seg::SensedExtent> sensed = std::nullopt) const {
-        if (!sensed) sensed = seg::SensedExtent::whole(mask.size());
+    // `readings`: the in-band readings before outlier removal (empty for a given mask).
+    Segmentation fromMask(cv::Mat1b mask, Segmentation out, const seg::SensedExtent& sensed,
+                          const cv::Mat1b& readings = cv::Mat1b()) const {
         // Clean-up and contours work inside the region the mask can reach, not the whole frame:
         // a tuft covers a small part of it, and the results are the same (cleanUpRegion).
         const cv::Rect cleaned = seg::cleanUpRegion(mask, params);
@@ -274,7 +272,7 @@ struct Segmenter::Impl {
             for (auto& cluster : out.clusters) {
                 auto blades = seg::partitionCluster(cluster, mask, params,
                                                     static_cast<int>(out.blades.size()) + 1, r);
-                seg::flagBlades(blades, cluster, mask.size(), *sensed, params, out.edgeRaggedness);
+                seg::flagBlades(blades, cluster, mask.size(), sensed, params, out.edgeRaggedness);
                 for (auto& b : blades) {
                     const auto tip = static_cast<size_t>(b.tipIndex);
                     b.tipOnTrail = tip < b.contour_px.size() && trails.holds(b.contour_px[tip]);
@@ -348,7 +346,7 @@ Segmentation Segmenter::segment(std::span<const DepthFrame> frames) const {
 Segmentation Segmenter::segmentMask(const cv::Mat1b& mask) const {
     if (mask.empty()) throw CaptureError("Segmenter::segmentMask: the mask is empty (0x0)");
     cv::Mat1b binary = mask > 0;
-    return impl_->fromMask(binary, {});
+    return impl_->fromMask(binary, {}, seg::SensedExtent::whole(binary.size()));
 }
 
 }  // namespace meadow::capture
