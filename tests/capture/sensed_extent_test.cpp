@@ -79,6 +79,37 @@ TEST(SensedExtent, ABladeReachingTheSensorsBandIsTruncated) {
     EXPECT_EQ(truncatedBlades(cut), 1) << cut.summary();
 }
 
+// A tuft whose base sits on the sensor's band of no readings at the bottom may go on below it,
+// as below the image border: its cluster's base is hidden. Drawn fan moved down so that its base
+// is 20 rows above the bottom border, then the bottom 30 rows unread: the band takes the blades'
+// lowest 10 rows, where they meet the ground (the plane removal clears a few rows above it).
+TEST(SensedExtent, AClusterReachingTheBottomBandHasItsBaseHidden) {
+    const auto drawn = drawn::draw(drawn::fan(5));
+    DepthFrame frame = drawn.frame;
+    int baseRow = 0;  // lowest blade pixel
+    for (int y = 0; y < drawn.labels.rows; ++y)
+        if (cv::countNonZero(drawn.labels.row(y)) > 0) baseRow = y;
+    const int shift = frame.depth_mm.rows - 20 - baseRow;
+    ASSERT_GT(shift, 0);
+    const cv::Matx23d move(1, 0, 0, 0, 1, shift);
+    cv::warpAffine(drawn.frame.depth_mm, frame.depth_mm, move, drawn.frame.depth_mm.size(),
+                   cv::INTER_NEAREST, cv::BORDER_REPLICATE);
+    const auto baseHidden = [](const Segmentation& s) {
+        return std::any_of(s.clusters.begin(), s.clusters.end(), [](const auto& c) {
+            return std::find(c.flags.begin(), c.flags.end(), BladeFlag::BaseHidden) !=
+                   c.flags.end();
+        });
+    };
+    const Segmentation seen = Segmenter().segment(frame);
+    ASSERT_EQ(seen.blades.size(), 5u) << seen.summary();
+    EXPECT_FALSE(baseHidden(seen)) << seen.summary();
+    frame.depth_mm.rowRange(frame.depth_mm.rows - 30, frame.depth_mm.rows).setTo(0);
+    const Segmentation cut = Segmenter().segment(frame);
+    ASSERT_FALSE(cut.blades.empty()) << cut.summary();
+    EXPECT_TRUE(baseHidden(cut)) << cut.summary();
+    EXPECT_NE(cut.summary().find("band of no readings"), std::string::npos) << cut.summary();
+}
+
 // The real recording (a room, no plants): its nearest depth mode is a door edge at the left,
 // which runs into the sensor's 33-45 px band of no readings. It was modelled as a blade.
 TEST(SensedExtent, TheDoorEdgeOfTheRealRecordingIsTruncated) {

@@ -2,6 +2,7 @@
 // contour's distance from the cluster centre; for a tuft seen from the side the blades meet at
 // the base, so the lowest part of the cluster (the base point) puts the distance minima where
 // the blades actually part. Both are computed; params.reference picks the one used.
+#include <algorithm>
 #include <cmath>
 #include <opencv2/imgproc.hpp>
 
@@ -16,7 +17,8 @@ constexpr float kRadialDepthFraction = 0.3f;
 }  // namespace
 
 std::vector<BladeCluster> extractClusters(const cv::Mat1b& mask, const cv::Rect& region,
-                                          const SegmenterParams& params, StageReport& report) {
+                                          const SensedExtent& sensed, const SegmenterParams& params,
+                                          StageReport& report) {
     std::vector<std::vector<cv::Point>> contours;
     std::vector<cv::Vec4i> hierarchy;
     if (!region.empty())
@@ -72,9 +74,13 @@ std::vector<BladeCluster> extractClusters(const cv::Mat1b& mask, const cv::Rect&
                 c, BladeFlag::Overlapping,
                 "the cluster encloses " + std::to_string(holes) +
                     " hole(s) larger than maxHoleArea_px: blades cross, cuts there may be wrong");
-        if (box.br().y >= mask.rows)
+        // The bottom of what was sensed: the image border, or the band of no readings a
+        // structured-light camera leaves along it.
+        if (std::any_of(contour.begin(), contour.end(),
+                        [&](const cv::Point& p) { return sensed.atBottom(p); }))
             addFlag(c, BladeFlag::BaseHidden,
-                    "the cluster reaches the bottom image border: its base is outside the frame");
+                    "the cluster reaches the bottom of what the sensor read (image border or its "
+                    "band of no readings): its base may lie below it");
         const cv::Point centre(cvRound(c.centre_px.x), cvRound(c.centre_px.y));
         if (cv::Rect(0, 0, mask.cols, mask.rows).contains(centre) && mask(centre)) {
             const double inside = cv::pointPolygonTest(contour, c.centre_px, /*measureDist=*/true);

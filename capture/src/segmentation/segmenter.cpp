@@ -266,7 +266,7 @@ struct Segmenter::Impl {
             });
         out.clusterMask = mask;
         stage(out, "contours", &local, [&](StageReport& r) {
-            out.clusters = seg::extractClusters(mask, region, params, r);
+            out.clusters = seg::extractClusters(mask, region, sensed, params, r);
         });
         stage(out, "partition", nullptr, [&](StageReport& r) {
             for (auto& cluster : out.clusters) {

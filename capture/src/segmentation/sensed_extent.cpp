@@ -65,4 +65,9 @@ bool SensedExtent::atEdge(cv::Point p) const {
            p.y >= lastY[x] - 1;
 }
 
+bool SensedExtent::atBottom(cv::Point p) const {
+    if (p.x < 0 || p.x >= static_cast<int>(lastY.size())) return true;
+    return p.y >= lastY[static_cast<size_t>(p.x)] - 1;
+}
+
 }  // namespace meadow::capture::segmentation

@@ -86,11 +86,27 @@ struct TipTrails {
 TipTrails recoverTipTrails(const cv::Mat1b& candidates, const SegmenterParams& params,
                            cv::Mat1b& mask, StageReport& report);
 
+// sensed_extent.cpp: per row and column, the first and last pixel with a reading, where the
+// sensor's band of no readings along an image border (at most a tenth of the frame) ends.
+struct SensedExtent {
+    std::vector<int> firstX, lastX;             // per row
+    std::vector<int> firstY, lastY;             // per column
+    static SensedExtent whole(cv::Size frame);  // every pixel sensed (a mask, no depth)
+    static SensedExtent of(const cv::Mat1w& depth_mm);
+    // Whether p lies within a pixel of the image border or of such a band.
+    [[nodiscard]] bool atEdge(cv::Point p) const;
+    // Whether p lies within a pixel of the bottom border or of the band along it: a cluster
+    // reaching it may have its base below what was sensed.
+    [[nodiscard]] bool atBottom(cv::Point p) const;
+};
+
 // contour_extraction.cpp: one cluster per remaining region, with contour, centre, base point
-// and reference; flags holes (crossing blades) and hidden bases.
+// and reference; flags holes (crossing blades) and hidden bases (a cluster reaching the bottom
+// of what was sensed, SensedExtent::atBottom).
 // Only `region` of the frame-sized mask is searched (cleanUpRegion: nothing lies outside it).
 std::vector<BladeCluster> extractClusters(const cv::Mat1b& mask, const cv::Rect& region,
-                                          const SegmenterParams& params, StageReport& report);
+                                          const SensedExtent& sensed, const SegmenterParams& params,
+                                          StageReport& report);
 
 // blade_partition.cpp: persistent minima of the smoothed distance cut each cluster's contour
 // into blades ordered base A -> tip -> base B, each with its mask.
@@ -104,18 +120,7 @@ std::vector<float> smoothCircular(std::span<const float> signal, float sigma_sam
 
 // blade_flags.cpp: per-blade flags with reasons (thin, curled, truncated, overlapping).
 // `raggedness`: Segmentation::edgeRaggedness (the interior-share TooThin test needs ragged edges).
-// sensed_extent.cpp: per row and column, the first and last pixel with a reading, where the
-// sensor's band of no readings along an image border (at most a tenth of the frame) ends.
-struct SensedExtent {
-    std::vector<int> firstX, lastX;             // per row
-    std::vector<int> firstY, lastY;             // per column
-    static SensedExtent whole(cv::Size frame);  // every pixel sensed (a mask, no depth)
-    static SensedExtent of(const cv::Mat1w& depth_mm);
-    // Whether p lies within a pixel of the image border or of such a band.
-    [[nodiscard]] bool atEdge(cv::Point p) const;
-};
-
-// blade_flags.cpp. `sensed`: where a contour counts as truncated (SensedExtent::atEdge).
+// `sensed`: where a contour counts as truncated (SensedExtent::atEdge).
 void flagBlades(std::span<BladeContour> blades, const BladeCluster& cluster, cv::Size frameSize,
                 const SensedExtent& sensed, const SegmenterParams& params, float raggedness);
 void addFlag(BladeContour& blade, BladeFlag flag, std::string reason);
