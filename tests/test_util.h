@@ -5,18 +5,45 @@
 
 #include <array>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <string>
+#include <system_error>
+#include <vector>
 
 namespace meadow::test {
 
+// Scratch folders of this process, removed when it exits normally (a crash leaves them for a
+// look; so does MEADOW_KEEP_TEST_DIRS=1). Named by process, so every run would otherwise leave
+// its own set behind: a test machine gathered thousands.
+class ScratchFolders {
+public:
+    static ScratchFolders& instance() {
+        static ScratchFolders folders;
+        return folders;
+    }
+    void add(const std::filesystem::path& dir) { dirs_.push_back(dir); }
+    ScratchFolders(const ScratchFolders&) = delete;
+    ScratchFolders& operator=(const ScratchFolders&) = delete;
+    ~ScratchFolders() {
+        if (std::getenv("MEADOW_KEEP_TEST_DIRS")) return;
+        std::error_code ignored;  // a folder a test removed itself is fine
+        for (const auto& dir : dirs_) std::filesystem::remove_all(dir, ignored);
+    }
+
+private:
+    ScratchFolders() = default;
+    std::vector<std::filesystem::path> dirs_;
+};
+
 // A fresh, empty folder outside the repository, private to this process:
-// <tmp>/meadow_<name>_<pid>.
+// <tmp>/meadow_<name>_<pid>, removed when the process exits (ScratchFolders).
 inline std::filesystem::path freshTempDir(const std::string& name) {
     const auto dir = std::filesystem::temp_directory_path() /
                      ("meadow_" + name + "_" + std::to_string(::getpid()));
     std::filesystem::remove_all(dir);
     std::filesystem::create_directories(dir);
+    ScratchFolders::instance().add(dir);
     return dir;
 }
 
