@@ -4,8 +4,10 @@
 
 #include "commands.h"
 #include "meadow/capture/error.h"
+#include "meadow/capture/frame_memory.h"
 
 int main(int argc, char** argv) {
+    meadow::capture::keepFrameBuffersResident();  // capture and render run frame after frame
     CLI::App app{"meadow: capture real grass with a depth camera and render meadows of it"};
     app.require_subcommand(1);
     app.set_version_flag("--version", "meadow 0.1.0");

@@ -6,6 +6,7 @@
 
 #include <map>
 
+#include "meadow/capture/frame_memory.h"
 #include "meadow/capture/segmenter.h"
 #include "segmentation/drawn_tuft.h"
 
@@ -113,4 +114,12 @@ BENCHMARK(BM_TemporalFusion5)->Unit(benchmark::kMillisecond);
 
 }  // namespace
 
-BENCHMARK_MAIN();
+// As the `meadow` command runs: freed frame buffers stay with the process (frame_memory.h).
+int main(int argc, char** argv) {
+    meadow::capture::keepFrameBuffersResident();
+    benchmark::Initialize(&argc, argv);
+    if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
+    benchmark::RunSpecifiedBenchmarks();
+    benchmark::Shutdown();
+    return 0;
+}
