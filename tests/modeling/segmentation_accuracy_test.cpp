@@ -8,7 +8,9 @@
 // MEADOW_SEGMENTATION_VERBOSE=1, a difference image per frame (missed red, extra blue, given to
 // another blade yellow, in-band readings the mask left out green) and where the pixels went;
 // MEADOW_SEGMENTATION_ABLATION=1 prints recall / median IoU with one sensor noise term off at a
-// time (README: where the IoU goes).
+// time (README: where the IoU goes); MEADOW_SEGMENTATION_ORACLE=1 has the floor test print the
+// median IoU each preset would reach if every found pixel on a true blade went to that blade
+// (what a perfect partition of the found mask would give).
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -40,22 +42,25 @@ constexpr int kSeedsPerPreset = 2;
 struct Score {
     int truth = 0, found = 0, matched = 0;
     std::vector<double> iou;  // per matched true blade... and 0 for missed ones
+    std::vector<double>
+        oracleIou;  // the same with a perfect partition (MEADOW_SEGMENTATION_ORACLE)
     std::vector<std::string> flags;
     void add(const Score& o) {
         truth += o.truth;
         found += o.found;
         matched += o.matched;
         iou.insert(iou.end(), o.iou.begin(), o.iou.end());
+        oracleIou.insert(oracleIou.end(), o.oracleIou.begin(), o.oracleIou.end());
         flags.insert(flags.end(), o.flags.begin(), o.flags.end());
     }
     [[nodiscard]] double recall() const { return truth ? double(matched) / truth : 1.0; }
     [[nodiscard]] double precision() const { return found ? double(matched) / found : 1.0; }
-    [[nodiscard]] double medianIou() const {
-        if (iou.empty()) return 0.0;
-        auto v = iou;
+    static double median(std::vector<double> v) {
+        if (v.empty()) return 0.0;
         std::nth_element(v.begin(), v.begin() + static_cast<long>(v.size() / 2), v.end());
         return v[v.size() / 2];
     }
+    [[nodiscard]] double medianIou() const { return median(iou); }
 };
 
 // Greedy one-to-one matching by IoU over every (true, found) pair.
@@ -94,6 +99,24 @@ Score score(const cv::Mat1w& labels, const Segmentation& s, const cv::Mat1w* dep
         if (p.iou >= kMatchIou) ++sc.matched;
     }
     sc.iou = best;
+    if (std::getenv("MEADOW_SEGMENTATION_ORACLE")) {
+        // Each true blade gets every found pixel on it; the found piece it matched keeps its
+        // pixels off every true blade (the mask's own error stays).
+        cv::Mat1b found = cv::Mat1b::zeros(labels.size());
+        for (const auto& m : foundMasks) found |= m;
+        const cv::Mat1b truthAny = labels > 0;
+        for (size_t t = 0; t < ids.size(); ++t) {
+            const cv::Mat1b truth = labels == ids[t];
+            cv::Mat1b mine = truth & found;
+            for (const auto& p : pairs)
+                if (p.t == t && best[t] == p.iou) {
+                    mine |= foundMasks[p.f] & ~truthAny;
+                    break;
+                }
+            const double u = cv::countNonZero(truth | mine);
+            sc.oracleIou.push_back(u > 0 ? cv::countNonZero(truth & mine) / u : 0.0);
+        }
+    }
     if (std::getenv("MEADOW_SEGMENTATION_VERBOSE")) {
         // Where the IoU is lost, summed over blades: pixels of the cluster mask that no blade
         // owns in truth (mask too wide), true pixels outside the mask (mask too narrow), and
@@ -207,9 +230,11 @@ Score run(const std::string& presetName, float noiseScale, std::uint64_t seed,
 }
 
 // The brief's target, not met yet (see README's segmentation table): slim-grass blades (1.4-3.6
-// px wide at 0.8 m) fall apart under the sensor's lateral noise (recall 0), and the leaves reach
-// a median IoU of 0.78-0.88 on one frame (0.82-0.87 fusing 5): the edge error of ~0.5 px a side
-// that is left on 5-14 px wide blades, and the overlapping base. Disabled until then.
+// px wide at 0.8 m) fall apart under the sensor's lateral noise (recall 0), sharp-tip's smallest
+// blade lies along a neighbour and comes out merged with it (recall 0.83), and the leaves reach
+// a median IoU of 0.82-0.92 on one frame (quadratic, shrub and bamboo meet 0.85; sharp-tip
+// 0.82): the edge error of ~0.5 px a side left on 5-14 px wide blades, and the overlapping
+// base. Disabled until then.
 TEST(SegmentationAccuracy, DISABLED_BladeTypePresetsAtNominalNoiseMeetRecallAndIouTargets) {
     for (const auto& preset : kBladeTypePresets) {
         Score total;
@@ -222,10 +247,11 @@ TEST(SegmentationAccuracy, DISABLED_BladeTypePresetsAtNominalNoiseMeetRecallAndI
 }
 
 // What is achieved today, held as a floor so it cannot silently get worse: the four leaf
-// presets at nominal noise, one frame (measured recall 0.83-1.0, median IoU 0.78-0.88).
+// presets at nominal noise, one frame (measured recall 0.83-1.0, median IoU 0.82-0.92; 0.78-0.88
+// before the fork zone was decided by depth).
 TEST(SegmentationAccuracy, LeafPresetsAtNominalNoiseKeepTodaysAccuracy) {
     constexpr double kFloorRecall = 0.8;
-    constexpr double kFloorMedianIou = 0.77;
+    constexpr double kFloorMedianIou = 0.80;
     for (const std::string preset : {"quadratic-leaf", "shrub-leaf", "bamboo-leaf", "sharp-tip"}) {
         Score total;
         for (int seed = 1; seed <= kSeedsPerPreset; ++seed)
@@ -234,7 +260,33 @@ TEST(SegmentationAccuracy, LeafPresetsAtNominalNoiseKeepTodaysAccuracy) {
             << preset << ": " << total.matched << "/" << total.truth;
         EXPECT_GE(total.medianIou(), kFloorMedianIou) << preset;
         std::cout << "  " << preset << ": recall " << total.recall() << " precision "
-                  << total.precision() << " median IoU " << total.medianIou() << '\n';
+                  << total.precision() << " median IoU " << total.medianIou();
+        if (!total.oracleIou.empty())
+            std::cout << ", with a perfect partition " << Score::median(total.oracleIou);
+        std::cout << '\n';
+    }
+}
+
+// Where the edges are ragged (2x noise: 4-8 % against 0.4-1.3 % at 1x) the continued centre
+// lines of the fork zone lose (shrub-leaf 0.55 -> 0.52 in the measurement), so the wedges stand
+// there; at nominal noise deciding the zone by depth lifts the leaves' median IoU.
+TEST(SegmentationAccuracy, ForkZoneIsDecidedByDepthWhereTheEdgesAreClean) {
+    capture::SegmenterParams wedgeOnly;
+    wedgeOnly.forkByDepth = false;
+    for (int seed = 1; seed <= kSeedsPerPreset; ++seed) {
+        const Score fork = run("shrub-leaf", 2.0f, static_cast<std::uint64_t>(seed));
+        const Score wedge = run("shrub-leaf", 2.0f, static_cast<std::uint64_t>(seed), wedgeOnly);
+        EXPECT_EQ(fork.iou, wedge.iou) << "2x noise, seed " << seed;
+    }
+    for (const std::string preset : {"quadratic-leaf", "bamboo-leaf"}) {
+        Score fork, wedge;
+        for (int seed = 1; seed <= kSeedsPerPreset; ++seed) {
+            fork.add(run(preset, 1.0f, static_cast<std::uint64_t>(seed)));
+            wedge.add(run(preset, 1.0f, static_cast<std::uint64_t>(seed), wedgeOnly));
+        }
+        std::cout << "  " << preset << ": median IoU " << wedge.medianIou() << " -> "
+                  << fork.medianIou() << '\n';
+        EXPECT_GE(fork.medianIou(), wedge.medianIou() + 0.02) << preset;  // measured +0.04-0.05
     }
 }
 

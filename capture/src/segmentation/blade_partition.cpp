@@ -99,6 +99,7 @@ std::vector<std::pair<int, float>> circularMinimaPersistence(std::span<const flo
 }
 
 std::vector<BladeContour> partitionCluster(BladeCluster& cluster, const cv::Mat1b& mask,
+                                           const cv::Mat1w& depth_mm, float raggedness,
                                            const SegmenterParams& params, int firstId,
                                            StageReport& report) {
     const auto& contour = cluster.contour_px;
@@ -217,6 +218,13 @@ std::vector<BladeContour> partitionCluster(BladeCluster& cluster, const cv::Mat1
         for (int y = 0; y < region.rows; ++y)
             for (int x = 0; x < region.cols; ++x)
                 if (region(y, x) && covering(y, x) == 1) owner(y, x) = wedgeOwner(y, x);
+        if (params.forkByDepth && !depth_mm.empty() && raggedness <= params.forkMaxRaggedness) {
+            const int changed =
+                assignForkZone(pieces, box.tl(), cluster.reference_px - cv::Point2f(box.tl()),
+                               region, depth_mm, params.forkDepthSigma_mm, owner);
+            report.notes.push_back("fork zone: " + std::to_string(changed) +
+                                   " px given to another blade by centre lines and depth");
+        }
     }
     // The rest (every pixel with NearestContour; with Wedge, those in no wedge or in several)
     // goes to the nearest contour piece. The distance transform is the costliest step of the

@@ -91,6 +91,8 @@ std::string SegmenterParams::problem() const {
         {"curlTurn_deg", curlTurn_deg, 0.f, 3600.f},
         {"overlapWidthRatio", overlapWidthRatio, 1.f, 1000.f},
         {"secondTipFraction", secondTipFraction, 0.f, 1.f},
+        {"forkDepthSigma_mm", forkDepthSigma_mm, 0.1f, 1000.f},
+        {"forkMaxRaggedness", forkMaxRaggedness, 0.f, 1.f},
     };
     for (const auto& r : ranges) {
         if (!std::isfinite(r.value))
@@ -240,13 +242,16 @@ struct Segmenter::Impl {
             stage(out, "outlier removal", &mask, [&](StageReport& r) {
                 seg::removeOutliers(depth_mm, intrinsics, params, mask, r);
             });
-        return fromMask(std::move(mask), std::move(out), seg::SensedExtent::of(depth_mm), inBand);
+        return fromMask(std::move(mask), std::move(out), seg::SensedExtent::of(depth_mm), inBand,
+                        depth_mm);
     }
 
     // `sensed`: where the sensor read anything (the whole frame for a given mask).
-    // `readings`: the in-band readings before outlier removal (empty for a given mask).
+    // `readings`: the in-band readings before outlier removal, `depth_mm` the depth (both empty
+    // for a given mask).
     Segmentation fromMask(cv::Mat1b mask, Segmentation out, const seg::SensedExtent& sensed,
-                          const cv::Mat1b& readings = cv::Mat1b()) const {
+                          const cv::Mat1b& readings = cv::Mat1b(),
+                          const cv::Mat1w& depth_mm = cv::Mat1w()) const {
         // Clean-up and contours work inside the region the mask can reach, not the whole frame:
         // a tuft covers a small part of it, and the results are the same (cleanUpRegion).
         const cv::Rect cleaned = seg::cleanUpRegion(mask, params);
@@ -270,8 +275,9 @@ struct Segmenter::Impl {
         });
         stage(out, "partition", nullptr, [&](StageReport& r) {
             for (auto& cluster : out.clusters) {
-                auto blades = seg::partitionCluster(cluster, mask, params,
-                                                    static_cast<int>(out.blades.size()) + 1, r);
+                auto blades =
+                    seg::partitionCluster(cluster, mask, depth_mm, out.edgeRaggedness, params,
+                                          static_cast<int>(out.blades.size()) + 1, r);
                 seg::flagBlades(blades, cluster, mask.size(), sensed, params, out.edgeRaggedness);
                 for (auto& b : blades) {
                     const auto tip = static_cast<size_t>(b.tipIndex);

@@ -109,10 +109,20 @@ std::vector<BladeCluster> extractClusters(const cv::Mat1b& mask, const cv::Rect&
                                           StageReport& report);
 
 // blade_partition.cpp: persistent minima of the smoothed distance cut each cluster's contour
-// into blades ordered base A -> tip -> base B, each with its mask.
+// into blades ordered base A -> tip -> base B, each with its mask. `depth_mm`: the frame's
+// readings (empty for a given mask) and `raggedness` (Segmentation::edgeRaggedness) decide
+// whether the fork zone is re-decided by depth (SegmenterParams::forkByDepth).
 std::vector<BladeContour> partitionCluster(BladeCluster& cluster, const cv::Mat1b& mask,
+                                           const cv::Mat1w& depth_mm, float raggedness,
                                            const SegmenterParams& params, int firstId,
                                            StageReport& report);
+// fork_partition.cpp: the pixels of the fork zone (between each blade's two valleys and the base
+// point) re-decided by the blades' centre lines continued to the base and by depth. Box
+// coordinates: `owner` (blade index + 1) and `region` cover the cluster's box at `origin` of the
+// frame; `depth_mm` is frame-sized. Returns how many pixels changed blade.
+int assignForkZone(std::span<const BladeContour> pieces, cv::Point origin, cv::Point2f base_px,
+                   const cv::Mat1b& region, const cv::Mat1w& depth_mm, float depthSigma_mm,
+                   cv::Mat1i& owner);
 // Persistence of every local minimum of a circular signal (sublevel-set filtration); the
 // global minimum gets +infinity. Returned as (index, persistence), sorted by index.
 std::vector<std::pair<int, float>> circularMinimaPersistence(std::span<const float> signal);
