@@ -16,10 +16,13 @@ constexpr int kTrimThreshold_bytes = 64 << 20;
 constexpr int kMmapThreshold_bytes = 32 << 20;
 }  // namespace
 
-void keepFrameBuffersResident() {
+bool keepFrameBuffersResident() {
 #if defined(__GLIBC__)
-    mallopt(M_TRIM_THRESHOLD, kTrimThreshold_bytes);
-    mallopt(M_MMAP_THRESHOLD, kMmapThreshold_bytes);
+    // mallopt returns 1 on success.
+    return mallopt(M_TRIM_THRESHOLD, kTrimThreshold_bytes) == 1 &&
+           mallopt(M_MMAP_THRESHOLD, kMmapThreshold_bytes) == 1;
+#else
+    return false;
 #endif
 }
 

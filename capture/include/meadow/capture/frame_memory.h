@@ -9,7 +9,7 @@ namespace meadow::capture {
 // glibc trims the top of its heap, or maps such buffers afresh, so every frame faulted those
 // pages back in. Measured on the segmentation benchmark's single-frame front end (one core):
 // 4.85 -> 4.6 ms a frame, page faults 370 -> 7 a frame. Holds on to at most 64 MB of freed
-// memory. Does nothing where the allocator is not glibc's.
-void keepFrameBuffersResident();
+// memory. Returns whether the allocator took the settings (false where it is not glibc's).
+bool keepFrameBuffersResident();
 
 }  // namespace meadow::capture
