@@ -1,6 +1,7 @@
 // Morphological clean-up of the foreground mask: closing bridges one-pixel dropouts along thin
 // blades, the edge is smoothed along the contour (contour_smoothing.cpp), small regions are
-// speckle, small enclosed holes are missing readings. Larger holes are kept: a loop enclosed
+// speckle, small enclosed holes are missing readings, and thin fragments are joined to what lies
+// past their ends (fragment_links.cpp). Larger holes are kept: a loop enclosed
 // by blades means blades cross (flagged in contour_extraction.cpp).
 #include <cmath>
 #include <opencv2/imgproc.hpp>
@@ -59,6 +60,8 @@ void cleanUpMask(const SegmenterParams& params, cv::Mat1b& mask, StageReport& re
                                std::to_string(params.minRegionArea_px) + " px (" +
                                std::to_string(dropPixels) + " px): speckle");
     }
+    // Thin fragments joined to what lies past their ends, before the holes: a link may close one.
+    linkFragments(params, labels, stats, drop, mask, report);
     // Small holes: background components (4-connected) that do not touch the border.
     if (params.maxHoleArea_px > 0) {
         const cv::Mat1b background = mask == 0;

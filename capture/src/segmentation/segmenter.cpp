@@ -93,6 +93,9 @@ std::string SegmenterParams::problem() const {
         {"secondTipFraction", secondTipFraction, 0.f, 1.f},
         {"forkDepthSigma_mm", forkDepthSigma_mm, 0.1f, 1000.f},
         {"forkMaxRaggedness", forkMaxRaggedness, 0.f, 1.f},
+        {"fragmentLinkGap_px", fragmentLinkGap_px, 0.f, 100.f},
+        {"fragmentMinAspect", fragmentMinAspect, 1.f, 1000.f},
+        {"fragmentLinkAngle_deg", fragmentLinkAngle_deg, 0.f, 90.f},
     };
     for (const auto& r : ranges) {
         if (!std::isfinite(r.value))
@@ -122,6 +125,7 @@ std::string SegmenterParams::problem() const {
         {"minBladeContour_px", minBladeContour_px, 3, 1 << 20},
         {"tipTrailGap_px", tipTrailGap_px, 1, 16},
         {"tipTrailMaxLength_px", tipTrailMaxLength_px, 0, 4096},
+        {"fragmentMaxArea_px", fragmentMaxArea_px, 0, 1 << 28},
     };
     for (const auto& r : ints)
         if (r.value < r.lo || r.value > r.hi)

@@ -57,8 +57,14 @@ void removeOutliers(const cv::Mat1w& depth_mm, const Intrinsics& intrinsics,
                     const SegmenterParams& params, cv::Mat1b& mask, StageReport& report);
 
 // morphology_cleanup.cpp: closing, optional opening, edge smoothing, small regions dropped,
-// small holes filled.
+// small holes filled, thin fragments linked (fragment_links.cpp).
 void cleanUpMask(const SegmenterParams& params, cv::Mat1b& mask, StageReport& report);
+// fragment_links.cpp: small elongated parts of the mask (a thin blade the sensor broke) joined
+// to another part lying past one of their ends, along their axis, within fragmentLinkGap_px.
+// `labels` and `stats`: the mask's 8-connected parts (cv::connectedComponentsWithStats), with
+// `dropped` ones (by label) no longer in it.
+void linkFragments(const SegmenterParams& params, const cv::Mat1i& labels, const cv::Mat& stats,
+                   const std::vector<char>& dropped, cv::Mat1b& mask, StageReport& report);
 // contour_smoothing.cpp: every contour of the mask averaged along its length (Gaussian of
 // sigma_px points), no point moved more than maxShift_px, tips and valleys kept, and the mask
 // redrawn from them. 0 for either = off.
