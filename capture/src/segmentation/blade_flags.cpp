@@ -6,6 +6,7 @@
 #include <opencv2/imgproc.hpp>
 #include <sstream>
 
+#include "segmentation/polyline.h"
 #include "segmentation/stages.h"
 
 namespace meadow::capture {
@@ -45,28 +46,6 @@ std::string fixed(double v, int digits = 1) {
     return s.str();
 }
 
-// Points at equal arc-length steps along an open polyline.
-std::vector<cv::Point2f> resample(const std::vector<cv::Point2f>& line, int count) {
-    std::vector<float> arc(line.size(), 0.f);
-    for (size_t i = 1; i < line.size(); ++i)
-        arc[i] = arc[i - 1] + static_cast<float>(cv::norm(line[i] - line[i - 1]));
-    std::vector<cv::Point2f> out;
-    const float total = arc.back();
-    size_t j = 0;
-    for (int k = 0; k < count; ++k) {
-        const float s = total * static_cast<float>(k) / static_cast<float>(count - 1);
-        while (j + 1 < line.size() && arc[j + 1] < s) ++j;
-        if (j + 1 >= line.size()) {
-            out.push_back(line.back());
-            continue;
-        }
-        const float seg = arc[j + 1] - arc[j];
-        const float t = seg > 0.f ? (s - arc[j]) / seg : 0.f;
-        out.push_back(line[j] + t * (line[j + 1] - line[j]));
-    }
-    return out;
-}
-
 // Centre line: side A (start -> tip) and side B (end -> tip) resampled and averaged.
 std::vector<cv::Point2f> centreLine(const BladeContour& blade) {
     const auto& c = blade.contour_px;
@@ -75,7 +54,7 @@ std::vector<cv::Point2f> centreLine(const BladeContour& blade) {
     std::vector<cv::Point2f> a(c.begin(), c.begin() + blade.tipIndex + 1);
     std::vector<cv::Point2f> b(c.rbegin(),
                                c.rbegin() + static_cast<std::ptrdiff_t>(c.size()) - blade.tipIndex);
-    const auto ra = resample(a, kSpineSamples), rb = resample(b, kSpineSamples);
+    const auto ra = resampledEvenly(a, kSpineSamples), rb = resampledEvenly(b, kSpineSamples);
     std::vector<cv::Point2f> mid(static_cast<size_t>(kSpineSamples));
     for (size_t i = 0; i < mid.size(); ++i) mid[i] = 0.5f * (ra[i] + rb[i]);
     return mid;

@@ -22,6 +22,7 @@
 #include <opencv2/imgproc.hpp>
 #include <vector>
 
+#include "segmentation/polyline.h"
 #include "segmentation/stages.h"
 
 namespace meadow::capture::segmentation {
@@ -55,23 +56,6 @@ struct CentreSample {
     float halfWidth_px;
 };
 
-// Points every 1 px of arc length along a polyline, from its first point.
-std::vector<cv::Point2f> resampledByArcLength(const std::vector<cv::Point2f>& line) {
-    std::vector<cv::Point2f> out;
-    if (line.empty()) return out;
-    out.push_back(line.front());
-    float carried = 0.f;  // arc length walked since the last sample
-    for (size_t i = 1; i < line.size(); ++i) {
-        const cv::Point2f a = line[i - 1], b = line[i];
-        const auto segment = static_cast<float>(cv::norm(b - a));
-        if (segment <= 0.f) continue;
-        float at = 1.f - carried;  // where the next sample falls on this segment
-        for (; at <= segment; at += 1.f) out.push_back(a + (b - a) * (at / segment));
-        carried = segment - (at - 1.f);
-    }
-    return out;
-}
-
 // The piece's centre line (midpoints of its two sides matched by arc length from the tip, as the
 // valleys may lie at different heights) continued to `base`; box coordinates. Empty when the
 // piece is too short to give a direction.
@@ -82,7 +66,7 @@ std::vector<CentreSample> continuedCentreLine(const BladeContour& piece, cv::Poi
     std::vector<cv::Point2f> sideA, sideB;
     for (int i = tip; i >= 0; --i) sideA.emplace_back(c[static_cast<size_t>(i)] - origin);
     for (auto i = static_cast<size_t>(tip); i < c.size(); ++i) sideB.emplace_back(c[i] - origin);
-    const auto a = resampledByArcLength(sideA), b = resampledByArcLength(sideB);
+    const auto a = resampledEvery(sideA, 1.f), b = resampledEvery(sideB, 1.f);
     const size_t n = std::min(a.size(), b.size());
     constexpr auto span = static_cast<size_t>(kTangentSpan_px);
     if (n < span + 2) return {};
