@@ -20,6 +20,7 @@
 #include <cmath>
 #include <limits>
 #include <opencv2/imgproc.hpp>
+#include <span>
 #include <vector>
 
 #include "segmentation/polyline.h"
@@ -50,6 +51,14 @@ constexpr float kMinHalfWidth_px = 2.f;
 // a user's depth band kept (the benchmark's ground strips: 30 px half widths beside 3-4 px
 // blades).
 constexpr float kMaxWidthOverMedian = 3.f;
+
+// The element at size / 2 once sorted (the median of an odd count), reordering `values`.
+template <typename T>
+T middleOf(std::span<T> values) {
+    const auto middle = values.begin() + static_cast<std::ptrdiff_t>(values.size() / 2);
+    std::nth_element(values.begin(), middle, values.end());
+    return *middle;
+}
 
 struct CentreSample {
     cv::Point2f p;
@@ -83,8 +92,7 @@ std::vector<CentreSample> continuedCentreLine(const BladeContour& piece, cv::Poi
     dir *= 1.f / dirLength;
     std::array<float, span + 1> widths{};
     for (size_t j = 0; j <= span; ++j) widths[j] = line[n - 1 - j].halfWidth_px;
-    std::nth_element(widths.begin(), widths.begin() + span / 2, widths.end());
-    const float halfWidth = std::max(widths[span / 2], 0.5f);
+    const float halfWidth = std::max(middleOf(std::span<float>(widths)), 0.5f);
     // The control point lies on that direction, at most halfway to the base; a base behind the
     // direction would make the curve loop, so it is a straight line then.
     const cv::Point2f toBase = base - end;
@@ -200,8 +208,7 @@ std::vector<BladeDepth> depthsNearZone(size_t bladeCount, const cv::Mat1i& owner
     for (size_t k = 0; k < bladeCount; ++k) {
         auto& r = readings[k];
         if (r.size() < static_cast<size_t>(kMinDepthSamples)) continue;
-        std::nth_element(r.begin(), r.begin() + static_cast<std::ptrdiff_t>(r.size() / 2), r.end());
-        out[k] = {true, static_cast<float>(r[r.size() / 2])};
+        out[k] = {true, static_cast<float>(middleOf(std::span<std::uint16_t>(r)))};
     }
     return out;
 }
@@ -220,10 +227,7 @@ int assignForkZone(std::span<const BladeContour> pieces, cv::Point origin, cv::P
         if (!lines[k].empty()) halfWidths.push_back(lines[k].back().halfWidth_px);
     }
     if (halfWidths.empty()) return 0;
-    std::nth_element(halfWidths.begin(),
-                     halfWidths.begin() + static_cast<std::ptrdiff_t>(halfWidths.size() / 2),
-                     halfWidths.end());
-    const float widest = kMaxWidthOverMedian * halfWidths[halfWidths.size() / 2];
+    const float widest = kMaxWidthOverMedian * middleOf(std::span<float>(halfWidths));
     // Blades left out keep their wedge and take no zone pixels.
     std::vector<char> leftOut(n, 0);
     for (size_t k = 0; k < n; ++k)
@@ -312,16 +316,15 @@ int assignForkZone(std::span<const BladeContour> pieces, cv::Point origin, cv::P
                 decided(y, x) = other(zy, zx);
         }
     // 3x3 majority over the zone, among blades that take part (ties to the lower index). The
-    // voters: each pixel's blade, 0 outside the cluster or for a blade left out, with a border
+    // votes: each pixel's blade, 0 outside the cluster or for a blade left out, with a border
     // of zeros so that no read needs a bounds test.
-    std::vector<int> voter(n + 1, 0);
-    for (size_t k = 0; k < n; ++k) voter[k + 1] = leftOut[k] ? 0 : static_cast<int>(k) + 1;
     cv::Mat1i votes = reused(scratch.votes, work.size() + cv::Size(2, 2), 0);
     const cv::Mat1b area = region(work);
     for (int y = 0; y < work.height; ++y)
         for (int x = 0; x < work.width; ++x) {
             const int l = decided(y, x);
-            if (l > 0 && area(y, x)) votes(y + 1, x + 1) = voter[static_cast<size_t>(l)];
+            if (l > 0 && area(y, x) && !leftOut[static_cast<size_t>(l - 1)])
+                votes(y + 1, x + 1) = l;
         }
     std::vector<int> tally(n + 1, 0);
     int changed = 0;
@@ -340,8 +343,8 @@ int assignForkZone(std::span<const BladeContour> pieces, cv::Point origin, cv::P
                         uniform = uniform && l == here;
                     }
             }
-            int winner = here;
-            if (!uniform) {  // most of the zone: its neighbours all agree
+            int winner = here;  // where its neighbours all agree (most of the zone)
+            if (!uniform) {
                 int most = 0;
                 for (int i = 0; i < count; ++i) {
                     const int l = seen[static_cast<size_t>(i)];
