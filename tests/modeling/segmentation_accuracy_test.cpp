@@ -91,28 +91,26 @@ Score score(const cv::Mat1w& labels, const Segmentation& s, const cv::Mat1w* dep
     std::sort(pairs.begin(), pairs.end(),
               [](const Pair& a, const Pair& b) { return a.iou > b.iou; });
     std::vector<double> best(ids.size(), 0.0);
-    std::vector<char> tUsed(ids.size(), 0), fUsed(s.blades.size(), 0);
+    std::vector<int> pieceOf(ids.size(), -1);  // the found blade each true one was paired with
+    std::vector<char> fUsed(s.blades.size(), 0);
     for (const auto& p : pairs) {
-        if (tUsed[p.t] || fUsed[p.f]) continue;
-        tUsed[p.t] = fUsed[p.f] = 1;
+        if (pieceOf[p.t] >= 0 || fUsed[p.f]) continue;
+        pieceOf[p.t] = static_cast<int>(p.f);
+        fUsed[p.f] = 1;
         best[p.t] = p.iou;
         if (p.iou >= kMatchIou) ++sc.matched;
     }
     sc.iou = best;
+    cv::Mat1b found = cv::Mat1b::zeros(labels.size());
+    for (const auto& m : foundMasks) found |= m;
+    const cv::Mat1b truthAny = labels > 0;
     if (std::getenv("MEADOW_SEGMENTATION_ORACLE")) {
-        // Each true blade gets every found pixel on it; the found piece it matched keeps its
-        // pixels off every true blade (the mask's own error stays).
-        cv::Mat1b found = cv::Mat1b::zeros(labels.size());
-        for (const auto& m : foundMasks) found |= m;
-        const cv::Mat1b truthAny = labels > 0;
+        // Each true blade gets every found pixel on it; the found piece it was paired with keeps
+        // its pixels off every true blade (the mask's own error stays).
         for (size_t t = 0; t < ids.size(); ++t) {
             const cv::Mat1b truth = labels == ids[t];
             cv::Mat1b mine = truth & found;
-            for (const auto& p : pairs)
-                if (p.t == t && best[t] == p.iou) {
-                    mine |= foundMasks[p.f] & ~truthAny;
-                    break;
-                }
+            if (pieceOf[t] >= 0) mine |= foundMasks[static_cast<size_t>(pieceOf[t])] & ~truthAny;
             const double u = cv::countNonZero(truth | mine);
             sc.oracleIou.push_back(u > 0 ? cv::countNonZero(truth & mine) / u : 0.0);
         }
@@ -121,22 +119,16 @@ Score score(const cv::Mat1w& labels, const Segmentation& s, const cv::Mat1w* dep
         // Where the IoU is lost, summed over blades: pixels of the cluster mask that no blade
         // owns in truth (mask too wide), true pixels outside the mask (mask too narrow), and
         // true pixels given to another blade (partition error).
-        cv::Mat1b found = cv::Mat1b::zeros(labels.size());
-        for (const auto& m : foundMasks) found |= m;
-        const cv::Mat1b truthAny = labels > 0;
         const int extra = cv::countNonZero(found & ~truthAny);
         const int missed = cv::countNonZero(truthAny & ~found);
         int misassigned = 0;
         cv::Mat1b wrongBlade = cv::Mat1b::zeros(labels.size());
         for (size_t t = 0; t < ids.size(); ++t) {
-            const cv::Mat1b truth = labels == ids[t];
-            for (const auto& p : pairs)
-                if (p.t == t && best[t] == p.iou) {
-                    const cv::Mat1b wrong = truth & found & ~foundMasks[p.f];
-                    misassigned += cv::countNonZero(wrong);
-                    wrongBlade |= wrong;
-                    break;
-                }
+            if (pieceOf[t] < 0) continue;
+            const cv::Mat1b wrong =
+                (labels == ids[t]) & found & ~foundMasks[static_cast<size_t>(pieceOf[t])];
+            misassigned += cv::countNonZero(wrong);
+            wrongBlade |= wrong;
         }
         if (const char* folder = std::getenv("MEADOW_SEGMENTATION_DEBUG")) {
             // Missed true pixels red, extra mask pixels blue, correct ones grey.
