@@ -121,7 +121,7 @@ void addCaptureCommand(CLI::App& app) {
                     "Sigma, in contour points, of the Gaussian that smooths the mask's ragged edge "
                     "along its contour (0 = off; no point moves more than 1 px, tips and valleys "
                     "between blades stay)")
-        ->default_val(4.0f)
+        ->capture_default_str()  // the segmenter's own default
         ->check(CLI::Range(0.f, 20.f));
     cmd->add_flag(
         "--keep-flagged", args->options.keepFlagged,
