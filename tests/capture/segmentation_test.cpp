@@ -257,6 +257,26 @@ TEST(Segmenter, TemporalFusionRecoversFromPerFrameDropouts) {
     EXPECT_EQ(fused.report.front().stage, "temporal fusion");
 }
 
+// A bar 20 px wide seen in two frames, moved 2 px between them (lateral noise): the 2 columns on
+// each side read the bar in one frame and the wall in the other. The fused bar is 20 px wide on
+// average, as wide as in either frame; the farther of the two middle readings made it 18 px (the
+// intersection), the nearer 22 px (the union).
+TEST(Segmenter, FusingAnEvenCountKeepsAnEdgeThatMovedWhereItIsOnAverage) {
+    constexpr int kSize = 64, kBar = 20, kShift = 2;
+    std::vector<DepthFrame> frames(2);
+    for (int k = 0; k < 2; ++k) {
+        frames[k].index = k;
+        frames[k].depth_mm = cv::Mat1w(kSize, kSize, std::uint16_t{1000});
+        frames[k].depth_mm.colRange(20 + k * kShift, 20 + k * kShift + kBar).setTo(700);
+    }
+    StageReport report;
+    const cv::Mat1w fused = segmentation::fuseFrames(frames, 0.5f, report);
+    EXPECT_EQ(cv::countNonZero(fused == 700), kBar * kSize);
+    EXPECT_EQ(cv::countNonZero(fused == 1000), (kSize - kBar) * kSize);
+    for (int x = 20; x < 20 + kShift; ++x)  // half the rows of each moved column read the bar
+        EXPECT_EQ(cv::countNonZero(fused.col(x) == 700), kSize / 2) << "column " << x;
+}
+
 TEST(Segmenter, FusionRejectsFramesOfDifferentSizes) {
     auto a = drawn::draw(drawn::fan(3)).frame;
     DepthFrame b = a;

@@ -21,8 +21,9 @@ inline cv::Rect grownWithin(const cv::Rect& rect, int by_px, const cv::Rect& wit
            within;
 }
 
-// temporal_fusion.cpp: per-pixel median of the non-zero readings; pixels valid in fewer than
-// minValidFrameFraction of the frames read 0.
+// temporal_fusion.cpp: per-pixel median of the non-zero readings (of an even count, the nearer or
+// the farther middle one in a checkerboard); pixels valid in fewer than minValidFrameFraction of
+// the frames read 0.
 cv::Mat1w fuseFrames(std::span<const DepthFrame> frames, float minValidFrameFraction,
                      StageReport& report);
 

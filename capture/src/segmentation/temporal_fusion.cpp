@@ -1,5 +1,13 @@
 // Temporal fusion of a still tuft: per-pixel median of the valid readings. The median rejects
 // flying pixels and single-frame dropouts that a mean would smear into the result.
+//
+// An even count of readings has two middle ones, and at a blade's edge they are often one on the
+// blade and one on the wall behind (lateral noise moves the edge from frame to frame). Always
+// taking the farther one shrank every blade by the pixels the edge visits in half the frames,
+// always the nearer one grew it by them (simulated leaves, 1x noise, 2 frames, seeds 1-2: 320-840
+// px missed or 380-970 px extra per tuft, against 80-220 missed for one frame). So the
+// pixels alternate in a checkerboard between the nearer and the farther: the edge lies where it
+// does on average, and the edge smoothing along the contour evens out the alternation.
 #include <algorithm>
 #include <cmath>
 #include <opencv2/core.hpp>
@@ -27,7 +35,9 @@ cv::Mat1w fuseFrames(std::span<const DepthFrame> frames, float minValidFrameFrac
                 ++tooFew;
                 continue;
             }
-            const auto mid = values.begin() + static_cast<std::ptrdiff_t>(values.size() / 2);
+            std::size_t middle = values.size() / 2;
+            if (values.size() % 2 == 0 && (x + y) % 2 == 0) --middle;  // the nearer of the two
+            const auto mid = values.begin() + static_cast<std::ptrdiff_t>(middle);
             std::nth_element(values.begin(), mid, values.end());
             fused(y, x) = *mid;
         }
