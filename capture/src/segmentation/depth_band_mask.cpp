@@ -3,6 +3,7 @@
 // histogram, widened to the histogram's valleys on both sides.
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <opencv2/core.hpp>
 #include <sstream>
 
@@ -59,21 +60,6 @@ Flatness flatness(const cv::Mat1w& depth_mm, const cv::Mat1b& mask, const Intrin
     return f;
 }
 
-// Share of image columns holding a masked pixel within [lo_mm, hi_mm).
-float columnCoverage(const cv::Mat1w& depth_mm, const cv::Mat1b& mask, float lo_mm, float hi_mm) {
-    std::vector<char> hit(static_cast<size_t>(depth_mm.cols), 0);
-    for (int y = 0; y < depth_mm.rows; ++y) {
-        const auto* d = depth_mm[y];
-        const auto* m = mask[y];
-        for (int x = 0; x < depth_mm.cols; ++x)
-            if (m[x] && d[x] != 0 && static_cast<float>(d[x]) >= lo_mm &&
-                static_cast<float>(d[x]) < hi_mm)
-                hit[static_cast<size_t>(x)] = 1;
-    }
-    return static_cast<float>(std::count(hit.begin(), hit.end(), 1)) /
-           static_cast<float>(depth_mm.cols);
-}
-
 std::string metres(float v) {
     std::ostringstream s;
     s.precision(3);
@@ -82,35 +68,87 @@ std::string metres(float v) {
 }
 }  // namespace
 
-DepthBand automaticDepthBand(const cv::Mat1w& depth_mm, const cv::Mat1b& mask,
-                             const Intrinsics& intrinsics, const SegmenterParams& params,
-                             StageReport& report) {
-    const float bin_mm = params.histogramBin_m * kMillimetresPerMetre;
-    const int bins = static_cast<int>(kMaxHistogramDepth_m * kMillimetresPerMetre / bin_mm) + 1;
-    std::vector<double> hist(static_cast<size_t>(bins), 0.0);
+namespace {
+
+// The masked readings' depth histogram, and which image columns each bin's pixels fall in.
+struct DepthHistogram {
+    float bin_mm = 0.f;
+    std::vector<double> count;
+    std::size_t columns = 0;
+    std::vector<std::uint8_t> columnHit;  // bins x columns, 1 where the bin has a pixel
     double total = 0.0;
+
+    [[nodiscard]] int binOf(std::uint16_t d) const {
+        return std::min(static_cast<int>(count.size()) - 1,
+                        static_cast<int>(static_cast<float>(d) / bin_mm));
+    }
+    // Share of the image columns that the bins lo..hi not left out reach.
+    [[nodiscard]] float columnCoverage(int lo, int hi,
+                                       const std::vector<std::uint8_t>& leftOut) const {
+        std::vector<std::uint8_t> any(columns, 0);
+        for (int b = lo; b <= hi; ++b) {
+            const auto i = static_cast<std::size_t>(b);
+            if (count[i] == 0.0 || leftOut[i]) continue;
+            const std::uint8_t* row = &columnHit[i * columns];
+            for (std::size_t x = 0; x < columns; ++x) any[x] |= row[x];
+        }
+        return static_cast<float>(std::count(any.begin(), any.end(), 1)) /
+               static_cast<float>(columns);
+    }
+};
+
+DepthHistogram histogramOf(const cv::Mat1w& depth_mm, const cv::Mat1b& mask, float bin_mm) {
+    DepthHistogram h;
+    h.bin_mm = bin_mm;
+    h.count.assign(
+        static_cast<std::size_t>(kMaxHistogramDepth_m * kMillimetresPerMetre / bin_mm) + 1, 0.0);
+    h.columns = static_cast<std::size_t>(depth_mm.cols);
+    h.columnHit.assign(h.count.size() * h.columns, 0);
     for (int y = 0; y < depth_mm.rows; ++y) {
         const auto* d = depth_mm[y];
         const auto* m = mask[y];
         for (int x = 0; x < depth_mm.cols; ++x)
             if (d[x] != 0 && m[x] != 0) {
-                const int b =
-                    std::min(bins - 1, static_cast<int>(static_cast<float>(d[x]) / bin_mm));
-                hist[static_cast<size_t>(b)] += 1.0;
-                total += 1.0;
+                const auto b = static_cast<std::size_t>(h.binOf(d[x]));
+                h.count[b] += 1.0;
+                h.columnHit[b * h.columns + static_cast<std::size_t>(x)] = 1;
+                h.total += 1.0;
             }
     }
-    if (total == 0.0) {
-        report.notes.push_back("no valid depth left to histogram");
-        return {};
+    return h;
+}
+
+// Bins whose pixels alone reach across more than kSceneryColumnCoverage of the columns: a wall
+// or the ground seen at an angle, where each depth is a stripe across the frame.
+std::vector<std::uint8_t> sceneryBins(const DepthHistogram& h) {
+    std::vector<std::uint8_t> scenery(h.count.size(), 0);
+    for (std::size_t b = 0; b < h.count.size(); ++b) {
+        if (h.count[b] == 0.0) continue;
+        const auto first = h.columnHit.begin() + static_cast<std::ptrdiff_t>(b * h.columns);
+        const auto hit = std::count(first, first + static_cast<std::ptrdiff_t>(h.columns), 1);
+        scenery[b] =
+            static_cast<float>(hit) > kSceneryColumnCoverage * static_cast<float>(h.columns);
     }
-    std::vector<double> smooth(hist.size(), 0.0);
+    return scenery;
+}
+
+// The nearest mode with enough mass that is neither scenery nor a flat, level patch, the bins
+// in `leftOut` counting as empty; found = false when there is none.
+DepthBand nearestMode(const DepthHistogram& h, const std::vector<std::uint8_t>& leftOut,
+                      const cv::Mat1w& depth_mm, const cv::Mat1b& mask,
+                      const Intrinsics& intrinsics, const SegmenterParams& params,
+                      StageReport& report) {
+    const int bins = static_cast<int>(h.count.size());
+    const auto countAt = [&](int i) {
+        return leftOut[static_cast<std::size_t>(i)] ? 0.0 : h.count[static_cast<std::size_t>(i)];
+    };
+    std::vector<double> smooth(h.count.size(), 0.0);
     for (int i = 0; i < bins; ++i)
         for (int k = -kSmoothHalfWidth_bins; k <= kSmoothHalfWidth_bins; ++k) {
             const int j = i + k;
             if (j >= 0 && j < bins)
                 smooth[static_cast<size_t>(i)] +=
-                    hist[static_cast<size_t>(j)] * (kSmoothHalfWidth_bins + 1 - std::abs(k));
+                    countAt(j) * (kSmoothHalfWidth_bins + 1 - std::abs(k));
         }
     const auto at = [&](int i) { return smooth[static_cast<size_t>(i)]; };
     const int maxHalf_bins =
@@ -123,24 +161,24 @@ DepthBand automaticDepthBand(const cv::Mat1w& depth_mm, const cv::Mat1b& mask,
         if (!isPeak) continue;
         // Widen down the mode's slopes to its valleys, and across valleys that stay above a
         // share of the peak: a tuft is several blades at different depths, and the valleys
-        // between them are not the end of the tuft.
+        // between them are not the end of the tuft. Never into a bin left out.
         const double floor = kBandFloorFraction * at(peak);
         int lo = peak, hi = peak;
         const auto widen = [&](int from, int to) {
-            return at(to) > 0.0 && (at(to) <= at(from) || at(to) > floor);
+            return at(to) > 0.0 && !leftOut[static_cast<std::size_t>(to)] &&
+                   (at(to) <= at(from) || at(to) > floor);
         };
         while (lo > 0 && peak - lo < maxHalf_bins && widen(lo, lo - 1)) --lo;
         while (hi < bins - 1 && hi - peak < maxHalf_bins && widen(hi, hi + 1)) ++hi;
         double mass = 0.0;
-        for (int i = lo; i <= hi; ++i) mass += hist[static_cast<size_t>(i)];
-        if (mass < params.minModeFraction * total || mass < params.minRegionArea_px) {
+        for (int i = lo; i <= hi; ++i) mass += countAt(i);
+        if (mass < params.minModeFraction * h.total || mass < params.minRegionArea_px) {
             peak = hi;  // the whole mode is too small; continue beyond it
             continue;
         }
         // A mode spread over (nearly) every image column is scenery seen edge-on: the strip of
         // ground the sensor still reads before grazing angles drop it, a wall, a table edge.
-        const float coverage = columnCoverage(depth_mm, mask, static_cast<float>(lo) * bin_mm,
-                                              static_cast<float>(hi + 1) * bin_mm);
+        const float coverage = h.columnCoverage(lo, hi, leftOut);
         if (coverage > kSceneryColumnCoverage) {
             report.notes.push_back(
                 "skipped the mode at " +
@@ -150,8 +188,9 @@ DepthBand automaticDepthBand(const cv::Mat1w& depth_mm, const cv::Mat1b& mask,
             peak = hi;
             continue;
         }
-        const Flatness flat = flatness(depth_mm, mask, intrinsics, static_cast<float>(lo) * bin_mm,
-                                       static_cast<float>(hi + 1) * bin_mm, mass);
+        const Flatness flat =
+            flatness(depth_mm, mask, intrinsics, static_cast<float>(lo) * h.bin_mm,
+                     static_cast<float>(hi + 1) * h.bin_mm, mass);
         if (flat.tilt_deg <= params.maxGroundTilt_deg &&
             flat.thickness_m <= params.planeDistance_m) {
             std::ostringstream s;
@@ -167,17 +206,61 @@ DepthBand automaticDepthBand(const cv::Mat1w& depth_mm, const cv::Mat1b& mask,
         band.near_m = static_cast<float>(lo) * params.histogramBin_m;
         band.far_m = static_cast<float>(hi + 1) * params.histogramBin_m;
         band.found = true;
-        report.notes.push_back("automatic band [" + metres(band.near_m) + ", " +
-                               metres(band.far_m) + "]: nearest mode at " +
-                               metres((static_cast<float>(peak) + 0.5f) * params.histogramBin_m) +
-                               " holds " + std::to_string(static_cast<int>(100.0 * mass / total)) +
-                               " % of the valid pixels");
+        report.notes.push_back(
+            "automatic band [" + metres(band.near_m) + ", " + metres(band.far_m) +
+            "]: nearest mode at " +
+            metres((static_cast<float>(peak) + 0.5f) * params.histogramBin_m) + " holds " +
+            std::to_string(static_cast<int>(100.0 * mass / h.total)) + " % of the valid pixels");
         return band;
     }
     report.notes.push_back("no depth mode holds " +
                            std::to_string(static_cast<int>(100.f * params.minModeFraction)) +
                            " % of the valid pixels");
     return {};
+}
+
+}  // namespace
+
+DepthBand automaticDepthBand(const cv::Mat1w& depth_mm, const cv::Mat1b& mask,
+                             const Intrinsics& intrinsics, const SegmenterParams& params,
+                             bool groundRemoved, StageReport& report) {
+    const DepthHistogram h =
+        histogramOf(depth_mm, mask, params.histogramBin_m * kMillimetresPerMetre);
+    if (h.total == 0.0) {
+        report.notes.push_back("no valid depth left to histogram");
+        return {};
+    }
+    const std::vector<std::uint8_t> none(h.count.size(), 0);
+    DepthBand band = nearestMode(h, none, depth_mm, mask, intrinsics, params, report);
+    if (band.found || !groundRemoved) return band;
+    // Every mode was scenery. A tuft can share one with a wall or the ground behind it: the
+    // smoothing bleeds the scenery's mass into the tuft's depths, and the merged mode is skipped
+    // whole (the tilted preset at nominal noise: the wall begins 1 cm beyond the farthest blade,
+    // and no blades were found). So look again without the bins that alone reach across the
+    // frame, and keep the band from growing into their pixels. Only then, and only where a
+    // ground plane was removed: otherwise the ground at the tuft's own depths fills those bins
+    // too, leaving them out loses the tuft, and what is left of the ground passes for one
+    // (slim grass without a plane fit, 3 fused frames: no blades became 5 pieces of ground).
+    const std::vector<std::uint8_t> scenery = sceneryBins(h);
+    const auto sceneryCount = std::count(scenery.begin(), scenery.end(), 1);
+    if (sceneryCount == 0) return band;
+    double sceneryPixels = 0.0;
+    for (std::size_t b = 0; b < scenery.size(); ++b)
+        if (scenery[b]) sceneryPixels += h.count[b];
+    report.notes.push_back(
+        "looking again without " + std::to_string(sceneryCount) + " depth bin(s) of " +
+        std::to_string(static_cast<long long>(sceneryPixels)) + " px that each span over " +
+        std::to_string(static_cast<int>(100 * kSceneryColumnCoverage)) +
+        " % of the image columns (a wall or the ground seen at an angle)");
+    band = nearestMode(h, scenery, depth_mm, mask, intrinsics, params, report);
+    if (!band.found) return band;
+    band.scenery = cv::Mat1b::zeros(depth_mm.size());
+    for (int y = 0; y < depth_mm.rows; ++y)
+        for (int x = 0; x < depth_mm.cols; ++x)
+            if (const auto d = depth_mm(y, x);
+                d != 0 && mask(y, x) != 0 && scenery[static_cast<std::size_t>(h.binOf(d))])
+                band.scenery(y, x) = 255;
+    return band;
 }
 
 cv::Mat1b depthBandMask(const cv::Mat1w& depth_mm, DepthBand band, StageReport& report) {

@@ -194,8 +194,10 @@ struct Segmenter::Impl {
             out.clusterMask = cv::Mat1b::zeros(depth_mm.size());
             return out;
         }
-        seg::DepthBand band{params.nearDepth_m, params.farDepth_m,
-                            params.nearDepth_m < params.farDepth_m};
+        seg::DepthBand band;
+        band.near_m = params.nearDepth_m;
+        band.far_m = params.farDepth_m;
+        band.found = params.nearDepth_m < params.farDepth_m;
         const bool userBand = band.found;
         const bool removePlanes = params.planeMethod != PlaneMethod::None && params.maxPlanes > 0;
         cv::Mat1b mask;
@@ -216,9 +218,11 @@ struct Segmenter::Impl {
             });
         if (!userBand) {
             stage(out, "depth band", &mask, [&](StageReport& r) {
-                band = seg::automaticDepthBand(depth_mm, mask, intrinsics, params, r);
+                band = seg::automaticDepthBand(depth_mm, mask, intrinsics, params,
+                                               out.groundPlane.has_value(), r);
                 if (band.found) {
                     cv::Mat1b inBand = seg::depthBandMask(depth_mm, band, r);
+                    if (!band.scenery.empty()) mask &= ~band.scenery;
                     inBand &= mask;
                     seg::growDepthContinuous(depth_mm, mask, band, params, inBand, r);
                     mask = inBand;

@@ -32,15 +32,22 @@ struct DepthBand {
     float near_m = 0.0f;
     float far_m = 0.0f;
     bool found = false;
+    // Pixels at depths that reach across the frame (a wall or the ground seen at an angle),
+    // which the automatic band left out of its histogram; the band must not grow into them.
+    // Empty when there are none.
+    cv::Mat1b scenery;
 };
 // The nearest histogram mode with enough mass, widened to its valleys (Fan & Sheng 2017,
 // Sec. 4.1 use a user-set depth band; this finds one when the user gives none).
 // Only pixels set in `mask` count (ground removed first, so the ground's own mode cannot win).
 // A mode whose points form a flat, level patch (ground the plane fit left, or all the ground
-// when no plane is fitted) is skipped: a tuft stands up from the ground.
+// when no plane is fitted) is skipped: a tuft stands up from the ground. When every mode is
+// skipped and `groundRemoved` (the plane fit found the ground), the modes are looked for again
+// without the depth bins whose pixels alone reach across most of the image columns (a wall
+// behind the tuft); the band's `scenery` then holds those bins' pixels.
 DepthBand automaticDepthBand(const cv::Mat1w& depth_mm, const cv::Mat1b& mask,
                              const Intrinsics& intrinsics, const SegmenterParams& params,
-                             StageReport& report);
+                             bool groundRemoved, StageReport& report);
 cv::Mat1b depthBandMask(const cv::Mat1w& depth_mm, DepthBand band, StageReport& report);
 // Grows `band` into pixels of `allowed` that are depth-continuous (step <= step_m between
 // 8-neighbours) with it and within maxBandHalfWidth_m of the band.

@@ -1,0 +1,87 @@
+// The automatic depth band (capture/src/segmentation/depth_band_mask.cpp) where the tuft shares
+// its depths with a wall seen at an angle: every depth of the wall is a stripe across the frame,
+// and the histogram's smoothing merges the wall's mode with the tuft's.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <opencv2/core.hpp>
+#include <string>
+
+#include "../../capture/src/segmentation/stages.h"
+#include "meadow/capture/segmenter.h"
+
+namespace meadow::capture {
+namespace {
+
+constexpr int kWidth = 320, kHeight = 240;
+constexpr int kWallRows = 100;           // rows 0-99: the wall, 1000 mm at row 99
+const cv::Rect kTuft(140, 150, 40, 60);  // the tuft, 960-999 mm
+constexpr std::uint16_t kWallNear_mm = 1000, kTuftNear_mm = 960;
+
+// A wall rising from 1000 mm (its lowest row) by 3 mm a row, nothing below it but the tuft (the
+// ground already removed), the tuft's depth changing across its columns.
+cv::Mat1w wallBehindTuft() {
+    cv::Mat1w depth(kHeight, kWidth, std::uint16_t{0});
+    for (int y = 0; y < kWallRows; ++y) depth.row(y).setTo(kWallNear_mm + 3 * (kWallRows - 1 - y));
+    for (int x = 0; x < kTuft.width; ++x) depth(kTuft).col(x).setTo(kTuftNear_mm + x);
+    return depth;
+}
+
+Intrinsics intrinsics() {
+    Intrinsics k;
+    k.width_px = kWidth;
+    k.height_px = kHeight;
+    k.fx_px = k.fy_px = 288.f;
+    k.cx_px = kWidth / 2.f;
+    k.cy_px = kHeight / 2.f;
+    return k;
+}
+
+bool mentions(const StageReport& r, const std::string& text) {
+    return std::any_of(r.notes.begin(), r.notes.end(),
+                       [&](const std::string& n) { return n.find(text) != std::string::npos; });
+}
+
+TEST(DepthBand, ATuftBesideAWallsDepthsIsFoundOnceTheWallsStripesAreLeftOut) {
+    const cv::Mat1w depth = wallBehindTuft();
+    const cv::Mat1b mask = depth > 0;
+    StageReport report;
+    const segmentation::DepthBand band = segmentation::automaticDepthBand(
+        depth, mask, intrinsics(), SegmenterParams{}, /*groundRemoved=*/true, report);
+    ASSERT_TRUE(band.found) << report.notes.back();
+    EXPECT_TRUE(mentions(report, "skipped the mode")) << "the merged mode is skipped first";
+    EXPECT_TRUE(mentions(report, "looking again without"));
+    EXPECT_LE(band.near_m, kTuftNear_mm / 1000.f);
+    EXPECT_GE(band.far_m, (kTuftNear_mm + kTuft.width) / 1000.f);
+    // The wall's pixels at the band's depths are scenery, the tuft's are not.
+    ASSERT_FALSE(band.scenery.empty());
+    EXPECT_EQ(cv::countNonZero(band.scenery(kTuft)), 0);
+    EXPECT_EQ(cv::countNonZero(band.scenery.rowRange(0, kWallRows)), kWallRows * kWidth);
+}
+
+TEST(DepthBand, WithoutARemovedGroundTheWallsStripesStay) {
+    // Without a plane fit the ground at the tuft's own depths would fill such bins as well, so
+    // the second look is not taken: no band, as before.
+    const cv::Mat1w depth = wallBehindTuft();
+    StageReport report;
+    const segmentation::DepthBand band = segmentation::automaticDepthBand(
+        depth, depth > 0, intrinsics(), SegmenterParams{}, /*groundRemoved=*/false, report);
+    EXPECT_FALSE(band.found);
+    EXPECT_FALSE(mentions(report, "looking again without"));
+}
+
+TEST(DepthBand, ATuftClearOfTheWallIsFoundAtOnce) {
+    cv::Mat1w depth = wallBehindTuft();
+    cv::Mat1w tuft = depth(kTuft);
+    tuft -= cv::Scalar(200);  // 760-799 mm: its own mode, well in front of the wall
+    StageReport report;
+    const segmentation::DepthBand band = segmentation::automaticDepthBand(
+        depth, depth > 0, intrinsics(), SegmenterParams{}, /*groundRemoved=*/true, report);
+    ASSERT_TRUE(band.found);
+    EXPECT_FALSE(mentions(report, "looking again without"));
+    EXPECT_TRUE(band.scenery.empty());
+    EXPECT_LT(band.far_m, kWallNear_mm / 1000.f);
+}
+
+}  // namespace
+}  // namespace meadow::capture
