@@ -66,6 +66,8 @@ void runCapture(CaptureArgs& args) {
 }  // namespace
 
 void addCaptureCommand(CLI::App& app) {
+    // Options bound to the library's own fields show the library's defaults (capture_default_str)
+    // rather than a copy of them that could drift.
     auto args = std::make_shared<CaptureArgs>();
     CLI::App* cmd = app.add_subcommand(
         "capture",
@@ -83,16 +85,16 @@ void addCaptureCommand(CLI::App& app) {
     cmd->add_option("--fuse", args->options.fusionFrames,
                     "Frames fused (per-pixel median) per segmentation, for a still tuft; 1 = each "
                     "frame alone")
-        ->default_val(3)
+        ->capture_default_str()
         ->check(CLI::Range(1, 64));
     cmd->add_option("--max-frames", args->options.maxFrames,
                     "Stop after this many frames (0 = all)")
-        ->default_val(0)
+        ->capture_default_str()
         ->check(CLI::NonNegativeNumber);
     cmd->add_option(
            "--max-archetypes", args->options.maxArchetypes,
            "Merge near-duplicate blades until at most this many archetypes remain (0 = keep all)")
-        ->default_val(0)
+        ->capture_default_str()
         ->check(CLI::NonNegativeNumber);
     cmd->add_option(
            "--tolerance-mm", args->tolerance_mm,
@@ -102,15 +104,15 @@ void addCaptureCommand(CLI::App& app) {
         ->check(CLI::Range(0.f, 100.f));
     cmd->add_option("--knots", args->options.fit.refinedKnots,
                     "Skeleton knots kept by the movement-similarity refiner (0 = no refining)")
-        ->default_val(16)
+        ->capture_default_str()
         ->check(CLI::Range(0, 128));
     cmd->add_option("--near", args->options.segmenter.nearDepth_m,
                     "Near edge of the depth band in metres (0 with --far 0: automatic)")
-        ->default_val(0.f)
+        ->capture_default_str()
         ->check(CLI::Range(0.f, 20.f));
     cmd->add_option("--far", args->options.segmenter.farDepth_m,
                     "Far edge of the depth band in metres")
-        ->default_val(0.f)
+        ->capture_default_str()
         ->check(CLI::Range(0.f, 20.f));
     cmd->add_option("--plane", args->plane,
                     "Ground/background plane removal: ransac (PCL SACSegmentation), organized (PCL "
@@ -121,7 +123,7 @@ void addCaptureCommand(CLI::App& app) {
                     "Sigma, in contour points, of the Gaussian that smooths the mask's ragged edge "
                     "along its contour (0 = off; no point moves more than 1 px, tips and valleys "
                     "between blades stay)")
-        ->capture_default_str()  // the segmenter's own default
+        ->capture_default_str()
         ->check(CLI::Range(0.f, 20.f));
     cmd->add_flag(
         "--keep-flagged", args->options.keepFlagged,

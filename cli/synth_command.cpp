@@ -49,6 +49,7 @@ void runSynth(const SynthArgs& args) {
 }  // namespace
 
 void addSynthCommand(CLI::App& app) {
+    // The defaults shown are SynthOptions' own (capture_default_str), not copies of them.
     auto args = std::make_shared<SynthArgs>();
     CLI::App* synth = app.add_subcommand(
         "synth",
@@ -60,18 +61,18 @@ void addSynthCommand(CLI::App& app) {
                       "Recording folder to write (created; replaced if it is a meadow "
                       "recording)");
     synth->add_option("--frames", args->options.frames, "Frames to render")
-        ->default_val(3)
+        ->capture_default_str()
         ->check(CLI::Range(1, modeling::kMaxSynthFrames));
     synth
         ->add_option("--seed", args->options.seed,
                      "Random seed: the same seed gives the same files, byte for byte")
-        ->default_val(1)
+        ->capture_default_str()
         ->check(CLI::NonNegativeNumber);
     synth
         ->add_option("--noise", args->options.noiseScale,
                      "Scale of the sensor noise: 0 = exact depth (still quantised), 1 = a "
                      "Kinect v1; the noisy preset triples it")
-        ->default_val(1.0f)
+        ->capture_default_str()
         ->check(CLI::Range(0.0f, 10.0f));
     synth
         ->add_option("--distance", args->options.distance_m,
