@@ -37,7 +37,10 @@ void runCapture(CaptureArgs& args) {
     modeling::CaptureOptions options = args.options;
     options.debugDir = args.debug;
     options.segmenter.planeMethod = planeMethod(args.plane);
-    if (args.tolerance_mm > 0.f) options.fit.widthTolerance_m = args.tolerance_mm * 1e-3f;
+    if (args.tolerance_mm > 0.f) {
+        options.fit.widthTolerance_m = args.tolerance_mm * 1e-3f;
+        options.fit.knotTolerance_m = args.tolerance_mm * 1e-3f;
+    }
 
     auto source = capture::openDepthSource(args.source, toSourceOptions(args.sourceArgs));
     const int frames = source->info().frameCount;
@@ -98,12 +101,14 @@ void addCaptureCommand(CLI::App& app) {
         ->check(CLI::NonNegativeNumber);
     cmd->add_option(
            "--tolerance-mm", args->tolerance_mm,
-           "Width-profile tolerance: the fewest width samples whose mean error is within it (0 = "
-           "always 16)")
+           "Model no more than this needs: the fewest width samples whose mean error is within "
+           "it, and the fewest refined knots (at most --knots) whose polyline stays within it in "
+           "every simulated frame (0 = always 16 samples and --knots knots)")
         ->default_val(0.f)
         ->check(CLI::Range(0.f, 100.f));
     cmd->add_option("--knots", args->options.fit.refinedKnots,
-                    "Skeleton knots kept by the movement-similarity refiner (0 = no refining)")
+                    "Skeleton knots kept by the movement-similarity refiner, the most kept under "
+                    "--tolerance-mm (0 = no refining)")
         ->capture_default_str()
         ->check(CLI::Range(0, 128));
     cmd->add_option("--near", args->options.segmenter.nearDepth_m,

@@ -7,6 +7,7 @@
 #include <string>
 
 #include "meadow/modeling/error.h"
+#include "meadow/modeling/hausdorff.h"
 
 namespace meadow::modeling {
 namespace {
@@ -26,6 +27,38 @@ WidthProfile profileWithinTolerance(const std::vector<float>& s, const std::vect
         }
     }
     return fitWidthProfile(s, w, params.widthSamples);
+}
+
+// Algorithm 1's kept knots: refinedKnots of them, or, under a knot tolerance, the fewest whose
+// polyline stays within it over the simulated frames. A binary search over the count: a merge
+// sequence's deviation grows as knots go, if not strictly, so the count found is checked, and
+// the next larger ones tried while it fails.
+std::vector<int> keptKnots(const KnotTrajectories& frames, const BladeFitParams& params) {
+    const int all = static_cast<int>(frames.front().size());
+    const auto keep = [&](int m) {
+        if (m >= all) {
+            std::vector<int> every(static_cast<std::size_t>(all));
+            for (int i = 0; i < all; ++i) every[static_cast<std::size_t>(i)] = i;
+            return every;
+        }
+        return refineByMovementSimilarity(frames, m, params.refiner);
+    };
+    const int most = std::min(params.refinedKnots, all);
+    if (!(params.knotTolerance_m > 0.f)) return keep(most);
+    const auto within = [&](const std::vector<int>& kept) {
+        return maxDeviation_m(frames, kept) <= params.knotTolerance_m;
+    };
+    int lo = 2, hi = most;
+    while (lo < hi) {
+        const int mid = lo + (hi - lo) / 2;
+        if (within(keep(mid)))
+            hi = mid;
+        else
+            lo = mid + 1;
+    }
+    for (int m = lo; m < most; ++m)
+        if (std::vector<int> kept = keep(m); within(kept)) return kept;
+    return keep(most);
 }
 
 }  // namespace
@@ -107,15 +140,15 @@ BladeFit fitArchetype(const Skeleton& skeleton, const BladeFitParams& params, co
     std::vector<glm::vec3> local(points.size());
     for (std::size_t j = 0; j < points.size(); ++j) local[j] = out.frame.toLocal(points[j]);
     if (params.refinedKnots > 0) {
-        if (params.refinedKnots >= static_cast<int>(local.size())) {
+        if (params.refinedKnots >= static_cast<int>(local.size()) &&
+            !(params.knotTolerance_m > 0.f)) {
             a.knots_m = local;
         } else {
             ChainSimulationParams sim = params.simulation;
             sim.up = {0.f, 1.f, 0.f};
             sim.gravity_mps2 = {0.f, -kStandardGravity_mps2, 0.f};
             const KnotTrajectories frames = simulateChain(local, sim);
-            for (int k : refineByMovementSimilarity(frames, params.refinedKnots, params.refiner))
-                a.knots_m.push_back(local[k]);
+            for (int k : keptKnots(frames, params)) a.knots_m.push_back(local[k]);
         }
     }
     return out;

@@ -87,13 +87,22 @@ RefinementError evaluateRefinement(const KnotTrajectories& frames, const std::ve
         e.refinedHausdorffMax_m = std::max(e.refinedHausdorffMax_m, rh);
         for (std::size_t i = 0; i < kept.size(); ++i) refined[i] = knots[kept[i]];
         e.hausdorffMax_m = std::max(e.hausdorffMax_m, hausdorff_m(knots, refined));
-        float deviation = 0.f;
-        for (const glm::vec3& p : knots)
-            deviation = std::max(deviation, pointPolylineDistance_m(p, refined));
-        e.maxDeviation_m = std::max(e.maxDeviation_m, deviation);
     }
     e.refinedHausdorffMean_m /= static_cast<float>(frames.size());
+    e.maxDeviation_m = maxDeviation_m(frames, kept);
     return e;
+}
+
+float maxDeviation_m(const KnotTrajectories& frames, const std::vector<int>& kept) {
+    if (frames.empty()) throw std::invalid_argument("maxDeviation_m: no frames");
+    float worst = 0.f;
+    std::vector<glm::vec3> refined(kept.size());
+    for (const std::vector<glm::vec3>& knots : frames) {
+        for (std::size_t i = 0; i < kept.size(); ++i) refined[i] = knots[kept[i]];
+        for (const glm::vec3& p : knots)
+            worst = std::max(worst, pointPolylineDistance_m(p, refined));
+    }
+    return worst;
 }
 
 }  // namespace meadow::modeling

@@ -8,7 +8,7 @@
 //   modeling_accuracy.csv/.md      blade-type preset x noise x distance: spine / tip / height /
 //                                  width errors of the fitted archetypes
 //   modeling_tradeoff.csv/.md/.png spine error against capture time per tuft: refined knots,
-//                                  fusion frames, width tolerance (+ _knots/_width charts)
+//                                  fusion frames, tolerance (+ _knots/_width charts)
 //   fig12_<preset>.csv, fig12_all.csv, fig12.md, fig12.png  Fan & Sheng 2017 Fig. 12 on the
 //                                  skeletons the fit extracted from each preset
 // Charts are drawn by tools/chart.sh (gnuplot). Times are wall time (std::chrono::steady_clock),
@@ -76,7 +76,7 @@ const std::vector<int> kFusionFrames{1, 2, 3, 5};
 const std::vector<float> kSmoothingSigmas_px{0.f, 1.f, 2.f, 4.f, 8.f};
 const std::vector<int> kRefinedKnots{0, 4, 8, 16, 32, 64};  // 0: refining off (its cost)
 const std::vector<int> kModelingFusionFrames{1, 3, 5};
-const std::vector<float> kWidthTolerances_mm{0.f, 0.5f, 1.f, 2.f};
+const std::vector<float> kTolerances_mm{0.f, 0.5f, 1.f, 2.f, 4.f, 8.f};
 const std::vector<int> kFig12Knots{128, 64, 32, 16, 8};  // 128 = the full skeleton, error 0
 constexpr int kFig12RandomTrials = 4;
 constexpr int kMaxFig12BladesPerPreset = 8;  // each costs ~1.5 s of Hausdorff
@@ -754,24 +754,25 @@ void modelingTradeoff(const Plan& plan, const std::vector<Scene>& scenes, const 
         o.fusionFrames = f;
         configs.push_back({"fusion-frames", std::to_string(f), o});
     }
-    for (float tol : kWidthTolerances_mm) {
+    for (float tol : kTolerances_mm) {  // as `meadow capture --tolerance-mm`: widths and knots
         CaptureOptions o;
         o.fit.widthTolerance_m = tol / kMillimetresPerMetre;
-        configs.push_back({"width-tolerance-mm", fixed(tol, 1), o});
+        o.fit.knotTolerance_m = tol / kMillimetresPerMetre;
+        configs.push_back({"tolerance-mm", fixed(tol, 1), o});
     }
     std::ostringstream csv, md;
     csv << "knob,value,time_ms,cpu_ms,spine_error_mm,spine_error_median_mm,"
            "spine_off_curve_median_mm,knot_polyline_error_mm,knot_polyline_median_mm,"
-           "width_mae_pct_of_max,width_samples_mean,fitted_matched\n";
+           "width_mae_pct_of_max,width_samples_mean,fitted_matched,knots_kept_mean\n";
     md << "| knob | value | capture time per tuft (ms, wall) | CPU (ms) | spine control-point "
           "error (mm, median / mean) | refined-knot polyline off truth (mm, median / mean) | "
-          "width MAE (% of max) | width samples | blades "
-          "|\n|---|---|---|---|---|---|---|---|---|\n";
+          "width MAE (% of max) | width samples | knots kept | blades "
+          "|\n|---|---|---|---|---|---|---|---|---|---|\n";
     std::vector<TradeoffRow> rows;
     for (const Config& c : configs) {
         const capture::Segmenter segmenter(c.options.segmenter);
         std::vector<double> wall, cpu;
-        std::vector<float> cp, off, knots, width, samples;
+        std::vector<float> cp, off, knots, width, samples, kept;
         for (const Scene& scene : scenes) {
             TuftCapture cap;
             const Timing t = timeMedian(plan.repetitions,
@@ -787,6 +788,7 @@ void modelingTradeoff(const Plan& plan, const std::vector<Scene>& scenes, const 
                 width.push_back(s.errors[i].widthMaeFraction);
                 samples.push_back(
                     static_cast<float>(s.matchedFits[i]->archetype.width.width_m.size()));
+                kept.push_back(static_cast<float>(s.matchedFits[i]->archetype.knots_m.size()));
             }
         }
         rows.push_back(
@@ -795,14 +797,14 @@ void modelingTradeoff(const Plan& plan, const std::vector<Scene>& scenes, const 
                  fixed(mean(cp), 3) + ',' + fixed(median(cp), 3) + ',' + fixed(median(off), 3) +
                  ',' + orBlank(knots, mean(knots), 3) + ',' + orBlank(knots, median(knots), 3) +
                  ',' + fixed(kPercent * mean(width), 2) + ',' + fixed(mean(samples), 1) + ',' +
-                 std::to_string(cp.size()) + '\n'});
+                 std::to_string(cp.size()) + ',' + fixed(mean(kept), 1) + '\n'});
         md << "| " << c.knob << " | " << c.value << " | " << fixed(mean(wall), 1) << " | "
            << fixed(mean(cpu), 1) << " | " << fixed(median(cp), 2) << " / " << fixed(mean(cp), 2)
            << " | "
            << (knots.empty() ? std::string("– (refining off)")
                              : fixed(median(knots), 2) + " / " + fixed(mean(knots), 2))
            << " | " << fixed(kPercent * mean(width), 1) << " | " << fixed(mean(samples), 1) << " | "
-           << cp.size() << " |\n";
+           << fixed(mean(kept), 1) << " | " << cp.size() << " |\n";
         std::cout << "  " << c.knob << '=' << c.value << ": " << fixed(mean(wall), 1)
                   << " ms wall, " << fixed(mean(cpu), 1) << " ms CPU, spine " << fixed(mean(cp), 2)
                   << " mm, knots " << fixed(mean(knots), 2) << " mm, width "

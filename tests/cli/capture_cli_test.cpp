@@ -40,6 +40,33 @@ TEST(CaptureCli, SynthesisedTuftBecomesALibraryThatLoads) {
     EXPECT_NE(r.output.find("archetype(s)"), std::string::npos) << r.output;
 }
 
+// --tolerance-mm models no more than it needs, knots and width samples alike: a loose one keeps
+// fewer of both than the defaults (16 knots, 16 samples), on the same blades.
+TEST(CaptureCli, ToleranceKeepsFewerKnotsAndWidthSamples) {
+    const fs::path dir = freshTempDir("capture_tolerance");
+    ASSERT_EQ(runMeadow("synth --preset quadratic-leaf --seed 1 --frames 1 --out " +
+                        (dir / "rec").string())
+                  .exitCode,
+              0);
+    const auto capture = [&](const std::string& extra, const std::string& name) {
+        const auto r = runMeadow("capture " + (dir / "rec").string() + " --fuse 1 " + extra +
+                                 " --out " + (dir / name).string());
+        EXPECT_EQ(r.exitCode, 0) << r.output;
+        return meadow::modeling::loadArchetypeLibrary(dir / name);
+    };
+    const auto plain = capture("", "plain.json");
+    const auto loose = capture("--tolerance-mm 10", "loose.json");
+    ASSERT_EQ(plain.archetypes.size(), loose.archetypes.size());
+    ASSERT_GE(plain.archetypes.size(), 1u);
+    for (std::size_t i = 0; i < plain.archetypes.size(); ++i) {
+        EXPECT_EQ(plain.archetypes[i].knots_m.size(), 16u);
+        EXPECT_EQ(plain.archetypes[i].width.width_m.size(), 16u);
+        EXPECT_LT(loose.archetypes[i].knots_m.size(), 16u) << plain.archetypes[i].name;
+        EXPECT_GE(loose.archetypes[i].knots_m.size(), 2u);
+        EXPECT_LT(loose.archetypes[i].width.width_m.size(), 16u) << plain.archetypes[i].name;
+    }
+}
+
 // On this single frame RANSAC once took the tuft's own fan (leaning ~42 deg toward the camera)
 // for the ground, removed the tuft's base and left 6 blade pieces cut at mid-height from 5
 // blades. A plane with the back wall beneath it is no longer taken for the ground.

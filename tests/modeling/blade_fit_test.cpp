@@ -5,7 +5,9 @@
 
 #include <cmath>
 #include <glm/geometric.hpp>
+#include <iostream>
 
+#include "meadow/modeling/hausdorff.h"
 #include "modeling/blade_fit_synthetic_test.h"
 
 namespace meadow::modeling {
@@ -134,6 +136,42 @@ TEST(BladeFit, WidthToleranceGivesFewerSamplesForSimpleShape) {
     EXPECT_LT(fit.archetype.width.width_m.size(), 16u);
     EXPECT_GE(fit.archetype.width.width_m.size(), 2u);
     EXPECT_LE(fit.archetype.fit.widthMae_mm, 0.2f);
+}
+
+// Under a knot tolerance the refiner keeps the fewest knots whose polyline stays within it of
+// every skeleton knot over the simulated frames: fewer for a looser tolerance, two for a loose
+// one, the most allowed (refinedKnots) for one no refining can meet, and the rest pose within the
+// tolerance.
+TEST(BladeFit, KnotToleranceKeepsTheFewestKnotsThatStayWithinIt) {
+    const auto truth = makeBlade({0.f, 0.09f, 0.5f}, 0.15f, 0.6f, 0.008f);
+    const auto view = renderBlade(truth, fineIntrinsics());
+    const auto knotsWithin = [&](float tolerance_m) {
+        BladeFitParams params;
+        params.refinedKnots = 64;
+        params.knotTolerance_m = tolerance_m;
+        const BladeFit fit = fitBlade(view.blade, view.frame, params);
+        // The rest pose: every skeleton point (blade-local) near the knots' polyline.
+        float deviation = 0.f;
+        const auto& k = fit.archetype.knots_m;
+        for (const glm::vec3& p : fit.skeleton.points_m) {
+            const glm::vec3 q = fit.frame.toLocal(p);
+            float nearest = 1e9f;
+            for (std::size_t i = 0; i + 1 < k.size(); ++i)
+                nearest = std::min(nearest, pointSegmentDistance_m(q, k[i], k[i + 1]));
+            deviation = std::max(deviation, nearest);
+        }
+        if (tolerance_m < 0.1f && k.size() < 64u) {
+            EXPECT_LE(deviation, tolerance_m) << k.size() << " knots";
+        }
+        return k.size();
+    };
+    // Measured: 8 mm 8 knots, 4 mm 10, 2 mm 20, 1 mm 60, 0.5 mm 64 (the cap).
+    const std::size_t loose = knotsWithin(8e-3f), tight = knotsWithin(2e-3f);
+    EXPECT_GE(loose, 3u) << "a bent blade needs more than its two ends at 8 mm";
+    EXPECT_LT(loose, tight);
+    EXPECT_LT(tight, 64u);
+    EXPECT_EQ(knotsWithin(1.f), 2u);
+    EXPECT_EQ(knotsWithin(1e-7f), 64u);
 }
 
 }  // namespace

@@ -82,8 +82,12 @@ struct BladeFitParams {
     // widthSamples) whose mean absolute error against the measured widths is within tolerance.
     int widthSamples = 16;
     float widthTolerance_m = 0.f;
-    // Refined knot count (Fan & Sheng 2017, Algorithm 1); 0 skips refining.
+    // Refined knot count (Fan & Sheng 2017, Algorithm 1); 0 skips refining. When
+    // knotTolerance_m > 0 it is the most knots kept: the fewest (>= 2) are kept whose polyline
+    // stays within the tolerance of every skeleton knot in every simulated frame
+    // (maxDeviation_m), or refinedKnots when no fewer do.
     int refinedKnots = 16;
+    float knotTolerance_m = 0.f;
     RefinerParams refiner;
     ChainSimulationParams simulation;  // up and gravity are overridden to the blade-local +Y
     RootParams root;                   // rooting at the tuft's base (fitSegmentedBlade only)

@@ -31,5 +31,7 @@ struct RefinementError {
 };
 // Evaluates a refinement (kept knot indices, ascending) over every frame of the trajectories.
 RefinementError evaluateRefinement(const KnotTrajectories& frames, const std::vector<int>& kept);
+// RefinementError::maxDeviation_m alone (the cheap part: no polyline Hausdorff distance).
+float maxDeviation_m(const KnotTrajectories& frames, const std::vector<int>& kept);
 
 }  // namespace meadow::modeling
