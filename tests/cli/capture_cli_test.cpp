@@ -24,15 +24,21 @@ fs::path writeAllZeroRecording(const fs::path& dir) {
     return dir;
 }
 
+// `meadow synth SYNTH_ARGS` into dir/rec; the recording's path. Fails the test when synth does.
+fs::path synthesised(const fs::path& dir, const std::string& synthArgs) {
+    const fs::path rec = dir / "rec";
+    const auto r = runMeadow("synth " + synthArgs + " --out " + rec.string());
+    EXPECT_EQ(r.exitCode, 0) << r.output;
+    return rec;
+}
+
 }  // namespace
 
 TEST(CaptureCli, SynthesisedTuftBecomesALibraryThatLoads) {
     const fs::path dir = freshTempDir("capture_ok");
-    ASSERT_EQ(runMeadow("synth --preset quadratic-leaf --frames 3 --out " + (dir / "rec").string())
-                  .exitCode,
-              0);
-    const auto r = runMeadow("capture " + (dir / "rec").string() + " --out " +
-                             (dir / "lib.json").string() + " --glb " + (dir / "lib.glb").string());
+    const fs::path rec = synthesised(dir, "--preset quadratic-leaf --frames 3");
+    const auto r = runMeadow("capture " + rec.string() + " --out " + (dir / "lib.json").string() +
+                             " --glb " + (dir / "lib.glb").string());
     ASSERT_EQ(r.exitCode, 0) << r.output;
     const auto lib = meadow::modeling::loadArchetypeLibrary(dir / "lib.json");
     EXPECT_GE(lib.archetypes.size(), 1u);
@@ -44,13 +50,10 @@ TEST(CaptureCli, SynthesisedTuftBecomesALibraryThatLoads) {
 // fewer of both than the defaults (16 knots, 16 samples), on the same blades.
 TEST(CaptureCli, ToleranceKeepsFewerKnotsAndWidthSamples) {
     const fs::path dir = freshTempDir("capture_tolerance");
-    ASSERT_EQ(runMeadow("synth --preset quadratic-leaf --seed 1 --frames 1 --out " +
-                        (dir / "rec").string())
-                  .exitCode,
-              0);
+    const fs::path rec = synthesised(dir, "--preset quadratic-leaf --seed 1 --frames 1");
     const auto capture = [&](const std::string& extra, const std::string& name) {
-        const auto r = runMeadow("capture " + (dir / "rec").string() + " --fuse 1 " + extra +
-                                 " --out " + (dir / name).string());
+        const auto r = runMeadow("capture " + rec.string() + " --fuse 1 " + extra + " --out " +
+                                 (dir / name).string());
         EXPECT_EQ(r.exitCode, 0) << r.output;
         return meadow::modeling::loadArchetypeLibrary(dir / name);
     };
@@ -72,12 +75,9 @@ TEST(CaptureCli, ToleranceKeepsFewerKnotsAndWidthSamples) {
 // blades. A plane with the back wall beneath it is no longer taken for the ground.
 TEST(CaptureCli, APlaneThroughTheTuftIsNotRemovedAsGround) {
     const fs::path dir = freshTempDir("capture_fan_plane");
-    ASSERT_EQ(runMeadow("synth --preset quadratic-leaf --seed 1 --frames 1 --out " +
-                        (dir / "rec").string())
-                  .exitCode,
-              0);
-    const auto r = runMeadow("capture " + (dir / "rec").string() + " --fuse 1 --out " +
-                             (dir / "lib.json").string());
+    const fs::path rec = synthesised(dir, "--preset quadratic-leaf --seed 1 --frames 1");
+    const auto r =
+        runMeadow("capture " + rec.string() + " --fuse 1 --out " + (dir / "lib.json").string());
     ASSERT_EQ(r.exitCode, 0) << r.output;
     EXPECT_NE(r.output.find("captured 5 of 5 blade(s)"), std::string::npos) << r.output;
 }
