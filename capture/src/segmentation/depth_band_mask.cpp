@@ -66,9 +66,6 @@ std::string metres(float v) {
     s << v << " m";
     return s.str();
 }
-}  // namespace
-
-namespace {
 
 // The masked readings' depth histogram, and which image columns each bin's pixels fall in.
 struct DepthHistogram {
