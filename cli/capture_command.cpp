@@ -27,6 +27,25 @@ struct CaptureArgs {
     bool verbose = false;
 };
 
+// Algorithm 1 keeps at least the blade's two ends: 0 (no refining) or 2 to 128 (the skeleton's
+// points).
+const CLI::Validator kRefinedKnotCount(
+    [](std::string& value) {
+        int knots = -1;
+        try {
+            knots = std::stoi(value);
+        } catch (const std::exception&) {
+            return std::string("not a whole number: " + value);
+        }
+        if (knots == 1)
+            return std::string(
+                "1 knot cannot be kept: 0 skips refining, otherwise at least 2 (the blade's two "
+                "ends)");
+        if (knots < 0 || knots > 128) return "out of 0-128: " + value;
+        return std::string();
+    },
+    "in {0, 2-128}");
+
 capture::PlaneMethod planeMethod(const std::string& name) {
     if (name == "none") return capture::PlaneMethod::None;
     if (name == "organized") return capture::PlaneMethod::OrganizedMultiPlane;
@@ -110,7 +129,7 @@ void addCaptureCommand(CLI::App& app) {
                     "Skeleton knots kept by the movement-similarity refiner, the most kept under "
                     "--tolerance-mm (0 = no refining)")
         ->capture_default_str()
-        ->check(CLI::Range(0, 128));
+        ->check(kRefinedKnotCount);
     cmd->add_option("--near", args->options.segmenter.nearDepth_m,
                     "Near edge of the depth band in metres (0 with --far 0: automatic)")
         ->capture_default_str()

@@ -139,6 +139,10 @@ BladeFit fitArchetype(const Skeleton& skeleton, const BladeFitParams& params, co
     // moved by the chain simulation with gravity along -Y.
     std::vector<glm::vec3> local(points.size());
     for (std::size_t j = 0; j < points.size(); ++j) local[j] = out.frame.toLocal(points[j]);
+    if (params.refinedKnots == 1)
+        throw ModelingError(
+            "fitArchetype: refinedKnots is 1; 0 skips refining, otherwise at least 2 knots (the "
+            "blade's two ends) are kept");
     if (params.refinedKnots > 0) {
         if (params.refinedKnots >= static_cast<int>(local.size()) &&
             !(params.knotTolerance_m > 0.f)) {

@@ -116,6 +116,18 @@ TEST(CaptureCli, CorruptFrameNamesTheFile) {
     EXPECT_NE(r.output.find("000001.png"), std::string::npos) << r.output;
 }
 
+// Algorithm 1 keeps at least the two ends; --knots 1 was an "internal error" (exit 3) from deep
+// in the refiner after the whole segmentation.
+TEST(CaptureCli, OneKnotIsAUsageErrorNamingTheOption) {
+    const fs::path dir = freshTempDir("capture_one_knot");
+    const auto r = runMeadow("capture " + (dir / "rec").string() + " --knots 1 --out " +
+                             (dir / "lib.json").string());
+    EXPECT_EQ(r.exitCode, 2) << r.output;
+    EXPECT_NE(r.output.find("--knots"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("at least 2"), std::string::npos) << r.output;
+    EXPECT_EQ(r.output.find("internal error"), std::string::npos) << r.output;
+}
+
 TEST(CaptureCli, HelpExplainsTheOptionsAndDefaults) {
     const auto r = runMeadow("capture --help");
     EXPECT_EQ(r.exitCode, 0);
