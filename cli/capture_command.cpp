@@ -2,6 +2,7 @@
 #include <CLI/CLI.hpp>
 #include <iostream>
 #include <memory>
+#include <sstream>
 #include <string>
 
 #include "commands.h"
@@ -52,7 +53,18 @@ capture::PlaneMethod planeMethod(const std::string& name) {
     return capture::PlaneMethod::Ransac;
 }
 
+// A user band needs both edges, near below far (the segmenter's own check names its fields).
+void checkBand(float near_m, float far_m) {
+    if ((near_m > 0.f || far_m > 0.f) && !(near_m < far_m)) {
+        std::ostringstream s;
+        s << "the band's near edge (" << near_m << " m) must lie below its far edge (" << far_m
+          << " m); give both, or neither for an automatic band";
+        throw CLI::ValidationError("--near/--far", s.str());
+    }
+}
+
 void runCapture(CaptureArgs& args) {
+    checkBand(args.options.segmenter.nearDepth_m, args.options.segmenter.farDepth_m);
     modeling::CaptureOptions options = args.options;
     options.debugDir = args.debug;
     options.segmenter.planeMethod = planeMethod(args.plane);

@@ -128,6 +128,17 @@ TEST(CaptureCli, OneKnotIsAUsageErrorNamingTheOption) {
     EXPECT_EQ(r.output.find("internal error"), std::string::npos) << r.output;
 }
 
+TEST(CaptureCli, ABandWithOneEdgeOrEdgesSwappedIsAUsageErrorNamingTheOptions) {
+    const fs::path dir = freshTempDir("capture_band");
+    for (const std::string band : {"--near 1.0 --far 0.5", "--near 0.5"}) {
+        const auto r = runMeadow("capture " + (dir / "rec").string() + " " + band + " --out " +
+                                 (dir / "lib.json").string());
+        EXPECT_EQ(r.exitCode, 2) << band << ": " << r.output;
+        EXPECT_NE(r.output.find("--near/--far"), std::string::npos) << band << ": " << r.output;
+        EXPECT_NE(r.output.find("must lie below"), std::string::npos) << band << ": " << r.output;
+    }
+}
+
 TEST(CaptureCli, HelpExplainsTheOptionsAndDefaults) {
     const auto r = runMeadow("capture --help");
     EXPECT_EQ(r.exitCode, 0);
