@@ -30,35 +30,31 @@ WidthProfile profileWithinTolerance(const std::vector<float>& s, const std::vect
 }
 
 // Algorithm 1's kept knots: refinedKnots of them, or, under a knot tolerance, the fewest whose
-// polyline stays within it over the simulated frames. A binary search over the count: a merge
-// sequence's deviation grows as knots go, if not strictly, so the count found is checked, and
-// the next larger ones tried while it fails.
+// polyline stays within it over the simulated frames. One run of the greedy steps gives every
+// count's knots (movementSimilarityDropOrder); a binary search over the count then checks the
+// deviation. It grows as knots go, if not strictly, so the count found is checked, and the next
+// larger ones tried while it fails.
 std::vector<int> keptKnots(const KnotTrajectories& frames, const BladeFitParams& params) {
     const int all = static_cast<int>(frames.front().size());
-    const auto keep = [&](int m) {
-        if (m >= all) {
-            std::vector<int> every(static_cast<std::size_t>(all));
-            for (int i = 0; i < all; ++i) every[static_cast<std::size_t>(i)] = i;
-            return every;
-        }
-        return refineByMovementSimilarity(frames, m, params.refiner);
-    };
     const int most = std::min(params.refinedKnots, all);
-    if (!(params.knotTolerance_m > 0.f)) return keep(most);
-    const auto within = [&](const std::vector<int>& kept) {
-        return maxDeviation_m(frames, kept) <= params.knotTolerance_m;
+    if (!(params.knotTolerance_m > 0.f)) {
+        if (most >= all) return keptAfterDrops(all, {}, all);
+        return refineByMovementSimilarity(frames, most, params.refiner);
+    }
+    const std::vector<int> order = movementSimilarityDropOrder(frames, params.refiner);
+    const auto within = [&](int m) {
+        return maxDeviation_m(frames, keptAfterDrops(all, order, m)) <= params.knotTolerance_m;
     };
     int lo = 2, hi = most;
     while (lo < hi) {
         const int mid = lo + (hi - lo) / 2;
-        if (within(keep(mid)))
+        if (within(mid))
             hi = mid;
         else
             lo = mid + 1;
     }
-    for (int m = lo; m < most; ++m)
-        if (std::vector<int> kept = keep(m); within(kept)) return kept;
-    return keep(most);
+    while (lo < most && !within(lo)) ++lo;
+    return keptAfterDrops(all, order, lo);
 }
 
 }  // namespace

@@ -26,10 +26,13 @@ std::vector<int> allIndices(int n) {
 }
 
 // Algorithm 1's greedy loop, shared by movement similarity and geometry-only (which differ only
-// in the pair cost). Kept knots form a linked list; each step merges the cheapest adjacent pair.
+// in the pair cost): the knots in the order it drops them until `m` remain. Kept knots form a
+// linked list; each step merges the cheapest adjacent pair. The steps do not depend on m, so
+// stopping later only adds to the order.
 template <class Cost>
-std::vector<int> greedyMerge(int n, int m, const Cost& cost) {
-    if (m >= n) return allIndices(n);
+std::vector<int> dropOrder(int n, int m, const Cost& cost) {
+    std::vector<int> dropped;
+    if (m >= n) return dropped;
     std::vector<int> prev(static_cast<std::size_t>(n)), next(static_cast<std::size_t>(n));
     std::vector<float> pairCost(static_cast<std::size_t>(n), 0.f);  // cost of (i, next[i])
     for (int i = 0; i < n; ++i) {
@@ -56,10 +59,26 @@ std::vector<int> greedyMerge(int n, int m, const Cost& cost) {
         next[p] = q;
         prev[q] = p;
         pairCost[p] = cost(p, q);
+        dropped.push_back(drop);
     }
+    return dropped;
+}
+
+// The knots of 0..n-1 left after the first n - m of `dropped`, ascending.
+std::vector<int> keptAfter(int n, const std::vector<int>& dropped, int m) {
+    std::vector<char> gone(static_cast<std::size_t>(n), 0);
+    const auto count =
+        static_cast<std::size_t>(std::clamp(n - m, 0, static_cast<int>(dropped.size())));
+    for (std::size_t i = 0; i < count; ++i) gone[static_cast<std::size_t>(dropped[i])] = 1;
     std::vector<int> kept;
-    for (int i = 0; i != -1; i = next[i]) kept.push_back(i);
+    for (int i = 0; i < n; ++i)
+        if (!gone[static_cast<std::size_t>(i)]) kept.push_back(i);
     return kept;
+}
+
+template <class Cost>
+std::vector<int> greedyMerge(int n, int m, const Cost& cost) {
+    return keptAfter(n, dropOrder(n, m, cost), m);
 }
 
 void checkFrames(const KnotTrajectories& frames) {
@@ -93,11 +112,11 @@ float movementDifference(float dis, float var, float mu, float disScale, float v
     return mu * dis / disScale + (1.f - mu) * var / varScale;
 }
 
-std::vector<int> refineByMovementSimilarity(const KnotTrajectories& frames, int m,
-                                            const RefinerParams& params) {
-    checkFrames(frames);
+namespace {
+// Algorithm 1 with the movement difference as the pair cost, dropping knots until m remain.
+std::vector<int> movementSimilarityDrops(const KnotTrajectories& frames, int m,
+                                         const RefinerParams& params) {
     const int n = static_cast<int>(frames.front().size());
-    checkCounts(n, m, "refineByMovementSimilarity");
     if (!(params.mu >= 0.f && params.mu <= 1.f))
         throw std::invalid_argument("refineByMovementSimilarity: mu must be in [0, 1], got " +
                                     std::to_string(params.mu));
@@ -107,10 +126,32 @@ std::vector<int> refineByMovementSimilarity(const KnotTrajectories& frames, int 
         disSum += meanDistance_m(frames, i, i + 1), varSum += movementVariance_m2(frames, i, i + 1);
     const float disScale = disSum > 0.0 ? static_cast<float>(disSum / (n - 1)) : 1.f;
     const float varScale = varSum > 0.0 ? static_cast<float>(varSum / (n - 1)) : 1.f;
-    return greedyMerge(n, m, [&](int a, int b) {
+    return dropOrder(n, m, [&](int a, int b) {
         return movementDifference(meanDistance_m(frames, a, b), movementVariance_m2(frames, a, b),
                                   params.mu, disScale, varScale);
     });
+}
+}  // namespace
+
+std::vector<int> refineByMovementSimilarity(const KnotTrajectories& frames, int m,
+                                            const RefinerParams& params) {
+    checkFrames(frames);
+    const int n = static_cast<int>(frames.front().size());
+    checkCounts(n, m, "refineByMovementSimilarity");
+    return keptAfter(n, movementSimilarityDrops(frames, m, params), m);
+}
+
+std::vector<int> movementSimilarityDropOrder(const KnotTrajectories& frames,
+                                             const RefinerParams& params) {
+    checkFrames(frames);
+    const int n = static_cast<int>(frames.front().size());
+    checkCounts(n, 2, "movementSimilarityDropOrder");
+    return movementSimilarityDrops(frames, 2, params);
+}
+
+std::vector<int> keptAfterDrops(int knotCount, const std::vector<int>& dropOrder, int m) {
+    checkCounts(knotCount, m, "keptAfterDrops");
+    return keptAfter(knotCount, dropOrder, m);
 }
 
 std::vector<int> refineGeometryOnly(const std::vector<glm::vec3>& knots, int m) {

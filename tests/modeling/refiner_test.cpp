@@ -2,6 +2,7 @@
 // baselines, the chain simulation behind it, and the Fig. 12 comparison.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
@@ -80,6 +81,23 @@ TEST(Refiner, AlgorithmOneKeepsEndpointsAndReturnsMKnots) {
     RefinerParams bad;
     bad.mu = 1.5f;
     EXPECT_THROW(refineByMovementSimilarity(frames, 8, bad), std::invalid_argument);
+}
+
+// Algorithm 1's steps do not depend on m: one run down to the ends gives every count's knots.
+TEST(Refiner, OneDropOrderGivesAlgorithmOnesKnotsForEveryCount) {
+    const auto rest = restSkeleton(0.15f, 0.4f);
+    const KnotTrajectories frames = simulateChain(rest);
+    const std::vector<int> order = movementSimilarityDropOrder(frames);
+    ASSERT_EQ(order.size(), static_cast<std::size_t>(kFullKnots - 2));
+    std::vector<int> sorted = order;
+    std::sort(sorted.begin(), sorted.end());
+    EXPECT_EQ(std::adjacent_find(sorted.begin(), sorted.end()), sorted.end()) << "a knot twice";
+    EXPECT_GT(sorted.front(), 0) << "the base is never dropped";
+    EXPECT_LT(sorted.back(), kFullKnots - 1) << "the tip is never dropped";
+    for (int m : {2, 3, 8, 16, 64, 127, 128})
+        EXPECT_EQ(keptAfterDrops(kFullKnots, order, m), refineByMovementSimilarity(frames, m))
+            << m << " knots";
+    EXPECT_THROW(keptAfterDrops(kFullKnots, order, 1), std::invalid_argument);
 }
 
 TEST(Refiner, MeanRefinerSpacesKnotsEvenly) {

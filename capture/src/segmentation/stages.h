@@ -48,6 +48,7 @@ struct DepthBand {
 DepthBand automaticDepthBand(const cv::Mat1w& depth_mm, const cv::Mat1b& mask,
                              const Intrinsics& intrinsics, const SegmenterParams& params,
                              bool groundRemoved, StageReport& report);
+// Pixels within the band, less its scenery.
 cv::Mat1b depthBandMask(const cv::Mat1w& depth_mm, DepthBand band, StageReport& report);
 // Grows `band` into pixels of `allowed` that are depth-continuous (step <= step_m between
 // 8-neighbours) with it and within maxBandHalfWidth_m of the band.

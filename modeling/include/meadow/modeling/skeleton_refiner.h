@@ -40,6 +40,13 @@ struct RefinerParams {
 // Requires m >= 2 and frames with >= 2 knots each, all frames the same size.
 std::vector<int> refineByMovementSimilarity(const KnotTrajectories& frames, int m,
                                             const RefinerParams& params = {});
+// The same greedy steps run down to the two ends: the knots in the order Algorithm 1 drops them.
+// The steps do not depend on m, so keptAfterDrops(n, order, m) is refineByMovementSimilarity(
+// frames, m) for every m, from one run (the knot-count search under a tolerance uses it).
+std::vector<int> movementSimilarityDropOrder(const KnotTrajectories& frames,
+                                             const RefinerParams& params = {});
+// The knots 0..knotCount-1 left, ascending, once the first knotCount - m of `dropOrder` are gone.
+std::vector<int> keptAfterDrops(int knotCount, const std::vector<int>& dropOrder, int m);
 // Baselines on the rest (or any one frame's) knots.
 std::vector<int> refineRandom(int knotCount, int m, std::uint64_t seed);
 std::vector<int> refineMean(const std::vector<glm::vec3>& knots, int m);
