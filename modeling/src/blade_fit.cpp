@@ -37,10 +37,8 @@ WidthProfile profileWithinTolerance(const std::vector<float>& s, const std::vect
 std::vector<int> keptKnots(const KnotTrajectories& frames, const BladeFitParams& params) {
     const int all = static_cast<int>(frames.front().size());
     const int most = std::min(params.refinedKnots, all);
-    if (!(params.knotTolerance_m > 0.f)) {
-        if (most >= all) return keptAfterDrops(all, {}, all);
+    if (!(params.knotTolerance_m > 0.f))
         return refineByMovementSimilarity(frames, most, params.refiner);
-    }
     const std::vector<int> order = movementSimilarityDropOrder(frames, params.refiner);
     const auto within = [&](int m) {
         return maxDeviation_m(frames, keptAfterDrops(all, order, m)) <= params.knotTolerance_m;

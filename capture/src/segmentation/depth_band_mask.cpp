@@ -265,7 +265,6 @@ cv::Mat1b depthBandMask(const cv::Mat1w& depth_mm, DepthBand band, StageReport& 
     const double far_mm = std::ceil(band.far_m * kMillimetresPerMetre);
     cv::Mat1b mask;
     cv::inRange(depth_mm, cv::Scalar(std::max(1.0, near_mm)), cv::Scalar(far_mm), mask);
-    if (!band.scenery.empty()) mask &= ~band.scenery;  // a wall's pixels at the tuft's depths
     report.notes.push_back("band " + metres(band.near_m) + " .. " + metres(band.far_m) + " keeps " +
                            std::to_string(cv::countNonZero(mask)) + " px");
     return mask;

@@ -48,7 +48,7 @@ struct DepthBand {
 DepthBand automaticDepthBand(const cv::Mat1w& depth_mm, const cv::Mat1b& mask,
                              const Intrinsics& intrinsics, const SegmenterParams& params,
                              bool groundRemoved, StageReport& report);
-// Pixels within the band, less its scenery.
+// The frame's pixels within the band (the caller leaves out what its mask and `scenery` do).
 cv::Mat1b depthBandMask(const cv::Mat1w& depth_mm, DepthBand band, StageReport& report);
 // Grows `band` into pixels of `allowed` that are depth-continuous (step <= step_m between
 // 8-neighbours) with it and within maxBandHalfWidth_m of the band.
