@@ -4,6 +4,7 @@
 #include <glm/geometric.hpp>
 #include <glm/mat3x3.hpp>
 #include <glm/matrix.hpp>
+#include <opencv2/core.hpp>
 #include <stdexcept>
 #include <string>
 
@@ -37,7 +38,77 @@ glm::vec3 leastSquaresMiddleControlPoint(const std::vector<glm::vec3>& points,
     return glm::vec3(numerator / denominator);
 }
 
-SpineFit fitQuadraticBezier(const std::vector<glm::vec3>& points, int iterations) {
+namespace {
+
+// The residual of point j minus, where its parameter can still slide along the curve, the part
+// along the tangent: at the closest point that part is absorbed by t (tangent distance
+// minimisation, Wang, Pottmann & Liu 2006, Sec. 4). A point held at an end of the curve (the last
+// point with a free tip, a point whose closest parameter is clamped to 0 or 1) cannot slide, so
+// all of its residual counts: without that a free tip could retract past such points for free.
+glm::dmat3 residualProjector(const QuadraticBezier& B, float t, bool atEnd) {
+    if (atEnd) return glm::dmat3(1.0);
+    const glm::dvec3 d{B.tangent(t)};
+    const double dLen = glm::length(d);
+    const glm::dvec3 u = dLen > 0.0 ? d / dLen : glm::dvec3(0.0);
+    return glm::dmat3(1.0) - glm::outerProduct(u, u);
+}
+
+// One Gauss-Newton step on v1 alone (v0 and v2 fixed at the ends). A small multiple of the plain
+// least-squares term keeps the 3x3 system regular for a straight spine, whose tangents are all
+// parallel. False when no interior point constrains v1.
+bool stepMiddleControlPoint(const std::vector<glm::vec3>& points, const std::vector<float>& t,
+                            QuadraticBezier& B) {
+    glm::dmat3 A{0.0};
+    glm::dvec3 g{0.0};
+    double bSum = 0.0;
+    for (std::size_t j = 1; j + 1 < points.size(); ++j) {
+        const double b = 2.0 * (1.0 - t[j]) * t[j];
+        const glm::dmat3 P = residualProjector(B, t[j], t[j] <= 0.f || t[j] >= 1.f);
+        const glm::dvec3 r{B.at(t[j]) - points[j]};
+        A += b * b * P;
+        g += b * (P * r);
+        bSum += b * b;
+    }
+    if (bSum <= 0.0) return false;
+    A += kRegularisation * bSum * glm::dmat3(1.0);
+    B.v1 -= glm::vec3(glm::inverse(A) * g);
+    return true;
+}
+
+// One Gauss-Newton step on v1 and v2 together (v0 fixed at the root): the residual of point j is
+// linear in them, B(t_j) = (1 - t_j)^2 v0 + b_j v1 + t_j^2 v2, so the 6x6 normal equations are
+// sums of the 3x3 blocks w_a w_b P_j with w = (b_j, t_j^2). The last point keeps t = 1.
+bool stepMiddleAndTip(const std::vector<glm::vec3>& points, const std::vector<float>& t,
+                      QuadraticBezier& B) {
+    cv::Matx66d A = cv::Matx66d::zeros();
+    cv::Vec6d g = cv::Vec6d::all(0.0);
+    double diagonal = 0.0;
+    for (std::size_t j = 1; j < points.size(); ++j) {
+        const double w[2] = {2.0 * (1.0 - t[j]) * t[j], static_cast<double>(t[j]) * t[j]};
+        const glm::dmat3 P =
+            residualProjector(B, t[j], j + 1 == points.size() || t[j] <= 0.f || t[j] >= 1.f);
+        const glm::dvec3 Pr = P * glm::dvec3(B.at(t[j]) - points[j]);
+        for (int a = 0; a < 2; ++a)
+            for (int row = 0; row < 3; ++row) {
+                g[3 * a + row] += w[a] * Pr[row];
+                for (int b = 0; b < 2; ++b)
+                    for (int col = 0; col < 3; ++col)
+                        A(3 * a + row, 3 * b + col) += w[a] * w[b] * P[col][row];
+            }
+        diagonal += w[0] * w[0] + w[1] * w[1];
+    }
+    if (diagonal <= 0.0) return false;
+    for (int i = 0; i < 6; ++i) A(i, i) += kRegularisation * diagonal;
+    cv::Vec6d step;
+    if (!cv::solve(A, g, step, cv::DECOMP_CHOLESKY)) return false;
+    B.v1 -= glm::vec3(step[0], step[1], step[2]);
+    B.v2 -= glm::vec3(step[3], step[4], step[5]);
+    return true;
+}
+
+}  // namespace
+
+SpineFit fitQuadraticBezier(const std::vector<glm::vec3>& points, int iterations, SpineTip tip) {
     const std::size_t n = points.size();
     if (n < 3)
         throw std::invalid_argument("fitQuadraticBezier: need >= 3 points, got " +
@@ -64,31 +135,13 @@ SpineFit fitQuadraticBezier(const std::vector<glm::vec3>& points, int iterations
                 if (df > 1e-12f) fit.t[j] = std::clamp(fit.t[j] - f / df, 0.f, 1.f);
             }
         }
-        // Update of v1. Alternating the closed form above with the parameter correction converges
-        // only linearly (slowly when the chord parameters are far off), so the update minimises the
-        // squared distances to the curve to first order instead: with the parameters at the
-        // closest points the residual's tangential part is absorbed by t, which leaves the normal
-        // part, J_j = b_j (I - u_j u_j^T) (tangent distance minimisation, Wang, Pottmann & Liu
-        // 2006, Sec. 4). A small multiple of the plain least-squares term keeps the 3x3 system
-        // regular for a straight spine, whose tangents are all parallel.
-        glm::dmat3 A{0.0};
-        glm::dvec3 g{0.0};
-        double bSum = 0.0;
-        for (std::size_t j = 1; j + 1 < n; ++j) {
-            const double tj = fit.t[j];
-            const double b = 2.0 * (1.0 - tj) * tj;
-            const glm::dvec3 d{B.tangent(fit.t[j])};
-            const double dLen = glm::length(d);
-            const glm::dvec3 u = dLen > 0.0 ? d / dLen : glm::dvec3(0.0);
-            const glm::dmat3 normalProjector = glm::dmat3(1.0) - glm::outerProduct(u, u);
-            const glm::dvec3 r{B.at(fit.t[j]) - points[j]};
-            A += b * b * normalProjector;
-            g += b * (normalProjector * r);
-            bSum += b * b;
-        }
-        if (bSum <= 0.0) break;
-        A += kRegularisation * bSum * glm::dmat3(1.0);
-        B.v1 -= glm::vec3(glm::inverse(A) * g);
+        // Control point update. Alternating the closed form above with the parameter correction
+        // converges only linearly (slowly when the chord parameters are far off), so the update
+        // minimises the squared distances to the curve to first order instead (Gauss-Newton with
+        // the residuals' tangential parts left out where t absorbs them, residualProjector).
+        const bool moved = tip == SpineTip::LeastSquares ? stepMiddleAndTip(points, fit.t, B)
+                                                         : stepMiddleControlPoint(points, fit.t, B);
+        if (!moved) break;
     }
     double sum2 = 0.0;
     for (std::size_t j = 0; j < n; ++j) {

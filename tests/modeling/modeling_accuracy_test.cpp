@@ -22,9 +22,10 @@
 // fitted v0 was 3.3-4.8 mm above the true root (up to 20 mm), now within about 1 mm vertically.
 // The segmenter links tips back that lateral noise had dotted (tip trails), so less of the tip
 // is extrapolated: tip RMS 5.7-6.6 mm on the four leaf presets (seeds 1-3), height 1.9-3.6 %.
+// The tip fitted with the spine instead of pinned to the skeleton's last point: 5.4-5.6 mm.
 // Asserted with margin: at least a third of the true blades fitted; on the four leaf presets
 // (slim grass excluded, see above) the mean v0 error <= 8 mm, the mean height error <= 5 %, the
-// tip RMS <= 10 mm and the mean width MAE <= 15 % of max width. The other targets are printed.
+// tip RMS <= 8 mm and the mean width MAE <= 15 % of max width. The other targets are printed.
 // MEADOW_MODELING_TABLE=1 prints the per-preset table; MEADOW_MODELING_VERBOSE=1 every blade;
 // MEADOW_MODELING_SEED=N runs seed N instead of 1 (the bounds were checked on seeds 1-3).
 #include <gtest/gtest.h>
@@ -68,9 +69,10 @@ constexpr float kMaxLeafV0Error_mm = 8.f;
 // tuft's depth range and the shorter extension caps (blade_tip.h): height error
 // 1.9 / 3.6 / 3.3 % and tip RMS 6.1 / 5.7 / 6.6 mm (seeds 1 / 2 / 3), were 3.9 / 3.7 / 5.7 %
 // and 12.2 / 8.2 / 18.0 mm. With the edge smoothed along the contour: 1.8 / 3.6 / 3.2 % and
-// 5.9 / 5.8 / 6.2 mm.
+// 5.9 / 5.8 / 6.2 mm. With the tip fitted with the spine (SpineTip::LeastSquares): 1.8 / 3.6 /
+// 3.1 % and 5.4 / 5.6 / 5.4 mm, so the tip bound came down from 10 to 8 mm.
 constexpr float kMaxLeafHeightError = 0.05f;
-constexpr float kMaxLeafTipRms_mm = 10.f;
+constexpr float kMaxLeafTipRms_mm = 8.f;
 
 std::uint64_t seedFromEnvironment() {
     const char* text = std::getenv("MEADOW_MODELING_SEED");

@@ -31,11 +31,17 @@ struct SpineFit {
 glm::vec3 leastSquaresMiddleControlPoint(const std::vector<glm::vec3>& points,
                                          const std::vector<float>& t, const glm::vec3& v0,
                                          const glm::vec3& v2);
-// Fits a quadratic Bezier with v0 = points.front() and v2 = points.back(): chord-length
-// parameters and the closed-form v1, then alternately Newton steps per point on
+// Where the fitted spine ends. AtLastPoint: v2 = points.back(), the closed form's setting.
+// LeastSquares: v2 is fitted with v1, the last point held at t = 1 as one residual among all, so
+// the tip's position averages the whole skeleton's shape instead of resting on its noisiest point
+// (a tip 1-3 px wide).
+enum class SpineTip { AtLastPoint, LeastSquares };
+// Fits a quadratic Bezier with v0 = points.front() (and v2 = points.back() with AtLastPoint):
+// chord-length parameters and the closed-form v1, then alternately Newton steps per point on
 // f(t) = (B(t) - P) . B'(t) (parameter correction, Hoschek 1988) and a tangent-distance
-// update of v1 (see blade_fit_spine.cpp). Requires >= 3 points.
-SpineFit fitQuadraticBezier(const std::vector<glm::vec3>& points_m, int iterations = 20);
+// Gauss-Newton update of the free control points (see blade_fit_spine.cpp). Requires >= 3 points.
+SpineFit fitQuadraticBezier(const std::vector<glm::vec3>& points_m, int iterations = 20,
+                            SpineTip tip = SpineTip::AtLastPoint);
 
 // ---- Blade-local frame (blade_fit_frame.cpp) ------------------------------------------------
 // local = localFromCamera * (camera - origin_m). +Y along the spine's base tangent, +X toward the
@@ -78,6 +84,9 @@ ShapeFit nearestAnalyticShape(const WidthProfile& profile);
 struct BladeFitParams {
     SkeletonParams skeleton;
     int spineIterations = 20;
+    // The blades are rooted (v0 at the skeleton's base end); the tip is fitted, since the
+    // skeleton's last point is its least certain (see SpineTip).
+    SpineTip spineTip = SpineTip::LeastSquares;
     // Width profile: `widthSamples` values, or, when widthTolerance_m > 0, the fewest (>= 2, <=
     // widthSamples) whose mean absolute error against the measured widths is within tolerance.
     int widthSamples = 16;
