@@ -55,6 +55,18 @@ std::vector<int> keptKnots(const KnotTrajectories& frames, const BladeFitParams&
     return keptAfterDrops(all, order, lo);
 }
 
+// Weight 0 on the inner points of the root piece and the tip extension unless the spine is to
+// follow them (BladeFitParams::fitSpineToAddedPieces); empty (all 1) when there are none.
+std::vector<float> spineWeights(const Skeleton& skeleton, const BladeFitParams& params) {
+    const int n = static_cast<int>(skeleton.points_m.size());
+    if (params.fitSpineToAddedPieces || (skeleton.rootPoints <= 1 && skeleton.tipPoints <= 1))
+        return {};
+    std::vector<float> w(static_cast<std::size_t>(n), 1.f);
+    for (int j = 1; j < std::min(skeleton.rootPoints, n - 1); ++j) w[j] = 0.f;
+    for (int j = std::max(1, n - skeleton.tipPoints); j < n - 1; ++j) w[j] = 0.f;
+    return w;
+}
+
 }  // namespace
 
 BladeFit fitArchetype(const Skeleton& skeleton, const BladeFitParams& params, const Source& source,
@@ -67,7 +79,8 @@ BladeFit fitArchetype(const Skeleton& skeleton, const BladeFitParams& params, co
                             " skeleton points (need >= 3 with widths); check the contour");
     BladeFit out;
     out.skeleton = skeleton;
-    const SpineFit spine = fitQuadraticBezier(points, params.spineIterations, params.spineTip);
+    const SpineFit spine = fitQuadraticBezier(points, params.spineIterations, params.spineTip,
+                                              spineWeights(skeleton, params));
     const float length_m = spine.spine_m.length();
     if (!(length_m > 0.f))
         throw ModelingError("fitArchetype: blade " + std::to_string(source.bladeId) + " of frame " +

@@ -57,17 +57,18 @@ glm::dmat3 residualProjector(const QuadraticBezier& B, float t, bool atEnd) {
 // least-squares term keeps the 3x3 system regular for a straight spine, whose tangents are all
 // parallel. False when no interior point constrains v1.
 bool stepMiddleControlPoint(const std::vector<glm::vec3>& points, const std::vector<float>& t,
-                            QuadraticBezier& B) {
+                            const std::vector<float>& weights, QuadraticBezier& B) {
     glm::dmat3 A{0.0};
     glm::dvec3 g{0.0};
     double bSum = 0.0;
     for (std::size_t j = 1; j + 1 < points.size(); ++j) {
         const double b = 2.0 * (1.0 - t[j]) * t[j];
+        const double w = weights.empty() ? 1.0 : weights[j];
         const glm::dmat3 P = residualProjector(B, t[j], t[j] <= 0.f || t[j] >= 1.f);
         const glm::dvec3 r{B.at(t[j]) - points[j]};
-        A += b * b * P;
-        g += b * (P * r);
-        bSum += b * b;
+        A += w * b * b * P;
+        g += w * b * (P * r);
+        bSum += w * b * b;
     }
     if (bSum <= 0.0) return false;
     A += kRegularisation * bSum * glm::dmat3(1.0);
@@ -79,13 +80,16 @@ bool stepMiddleControlPoint(const std::vector<glm::vec3>& points, const std::vec
 // linear in them, B(t_j) = (1 - t_j)^2 v0 + b_j v1 + t_j^2 v2, so the 6x6 normal equations are
 // sums of the 3x3 blocks w_a w_b P_j with w = (b_j, t_j^2). The last point keeps t = 1.
 bool stepMiddleAndTip(const std::vector<glm::vec3>& points, const std::vector<float>& t,
-                      QuadraticBezier& B) {
+                      const std::vector<float>& weights, QuadraticBezier& B) {
     cv::Matx66d A = cv::Matx66d::zeros();
     cv::Vec6d g = cv::Vec6d::all(0.0);
     double diagonal = 0.0;
     for (std::size_t j = 1; j < points.size(); ++j) {
         const double w[2] = {2.0 * (1.0 - t[j]) * t[j], static_cast<double>(t[j]) * t[j]};
+        const double weight = weights.empty() ? 1.0 : weights[j];
+        if (weight <= 0.0) continue;
         const glm::dmat3 P =
+            weight *
             residualProjector(B, t[j], j + 1 == points.size() || t[j] <= 0.f || t[j] >= 1.f);
         const glm::dvec3 Pr = P * glm::dvec3(B.at(t[j]) - points[j]);
         for (int a = 0; a < 2; ++a)
@@ -95,7 +99,7 @@ bool stepMiddleAndTip(const std::vector<glm::vec3>& points, const std::vector<fl
                     for (int col = 0; col < 3; ++col)
                         A(3 * a + row, 3 * b + col) += w[a] * w[b] * P[col][row];
             }
-        diagonal += w[0] * w[0] + w[1] * w[1];
+        diagonal += weight * (w[0] * w[0] + w[1] * w[1]);
     }
     if (diagonal <= 0.0) return false;
     for (int i = 0; i < 6; ++i) A(i, i) += kRegularisation * diagonal;
@@ -108,11 +112,15 @@ bool stepMiddleAndTip(const std::vector<glm::vec3>& points, const std::vector<fl
 
 }  // namespace
 
-SpineFit fitQuadraticBezier(const std::vector<glm::vec3>& points, int iterations, SpineTip tip) {
+SpineFit fitQuadraticBezier(const std::vector<glm::vec3>& points, int iterations, SpineTip tip,
+                            const std::vector<float>& weights) {
     const std::size_t n = points.size();
     if (n < 3)
         throw std::invalid_argument("fitQuadraticBezier: need >= 3 points, got " +
                                     std::to_string(n));
+    if (!weights.empty() && weights.size() != n)
+        throw std::invalid_argument("fitQuadraticBezier: " + std::to_string(weights.size()) +
+                                    " weights for " + std::to_string(n) + " points");
     SpineFit fit;
     fit.t.assign(n, 0.f);
     float total = 0.f;
@@ -139,17 +147,21 @@ SpineFit fitQuadraticBezier(const std::vector<glm::vec3>& points, int iterations
         // converges only linearly (slowly when the chord parameters are far off), so the update
         // minimises the squared distances to the curve to first order instead (Gauss-Newton with
         // the residuals' tangential parts left out where t absorbs them, residualProjector).
-        const bool moved = tip == SpineTip::LeastSquares ? stepMiddleAndTip(points, fit.t, B)
-                                                         : stepMiddleControlPoint(points, fit.t, B);
+        const bool moved = tip == SpineTip::LeastSquares
+                               ? stepMiddleAndTip(points, fit.t, weights, B)
+                               : stepMiddleControlPoint(points, fit.t, weights, B);
         if (!moved) break;
     }
-    double sum2 = 0.0;
+    double sum2 = 0.0, weightSum = 0.0;
     for (std::size_t j = 0; j < n; ++j) {
+        const double w = weights.empty() ? 1.0 : weights[j];
+        if (w <= 0.0) continue;
         const float d = glm::distance(B.at(fit.t[j]), points[j]);
-        sum2 += static_cast<double>(d) * d;
+        sum2 += w * d * d;
+        weightSum += w;
         fit.max_m = std::max(fit.max_m, d);
     }
-    fit.rms_m = static_cast<float>(std::sqrt(sum2 / static_cast<double>(n)));
+    fit.rms_m = weightSum > 0.0 ? static_cast<float>(std::sqrt(sum2 / weightSum)) : 0.f;
     return fit;
 }
 

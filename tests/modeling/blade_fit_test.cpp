@@ -61,6 +61,47 @@ TEST(BladeFit, AFittedTipAveragesAnOffsetLastPointThatAFixedTipTakesWhole) {
     EXPECT_LT(free.rms_m, fixed.rms_m);
 }
 
+TEST(BladeFit, PointsOfWeightZeroDoNotShapeTheSpine) {
+    // The skeleton's root piece is a straight guess from the tuft's base up to the blade: here
+    // its stand-ins, points 1-8, sit 5 mm off the curve. Left out, they do not bend the spine.
+    std::vector<glm::vec3> pts;
+    for (int i = 0; i <= 40; ++i) pts.push_back(kCurve.at(i / 40.f));
+    std::vector<float> weights(pts.size(), 1.f);
+    for (int i = 1; i <= 8; ++i) pts[i].x += 0.005f, weights[i] = 0.f;
+    const SpineFit all = fitQuadraticBezier(pts, 20, SpineTip::LeastSquares);
+    const SpineFit measured = fitQuadraticBezier(pts, 20, SpineTip::LeastSquares, weights);
+    EXPECT_GT(glm::distance(all.spine_m.v1, kCurve.v1), 1e-3f);
+    EXPECT_LT(glm::distance(measured.spine_m.v1, kCurve.v1), 2e-5f);
+    EXPECT_LT(glm::distance(measured.spine_m.v2, kCurve.v2), 2e-5f);
+    EXPECT_LT(measured.rms_m, 1e-5f);  // over the points that count
+    EXPECT_EQ(measured.t.size(), pts.size());
+    EXPECT_THROW(fitQuadraticBezier(pts, 20, SpineTip::LeastSquares, {1.f, 1.f}),
+                 std::invalid_argument);
+}
+
+TEST(BladeFit, TheSpineKeepsToWhatWasSeenBetweenTheRootPieceAndTheTipExtension) {
+    // A skeleton whose first 10 and last 6 points are added pieces (rootPoints / tipPoints count
+    // the piece's end, the base or the new tip, too), bent 4 mm off the true curve: the spine
+    // comes from the points between and the two ends.
+    Skeleton s;
+    for (int i = 0; i <= 60; ++i) {
+        s.points_m.push_back(kCurve.at(i / 60.f));
+        s.width_m.push_back(0.004f);
+    }
+    s.rootPoints = 10;
+    s.tipPoints = 6;
+    for (int i = 1; i < 10; ++i) s.points_m[i].z += 0.004f;
+    for (int i = 55; i < 60; ++i) s.points_m[i].z -= 0.004f;
+    BladeFitParams params;
+    params.refinedKnots = 0;
+    const BladeFit seen = fitArchetype(s, params);
+    EXPECT_LT(glm::distance(seen.spineCamera_m.v1, kCurve.v1), 1e-4f);
+    EXPECT_LT(glm::distance(seen.spineCamera_m.v2, kCurve.v2), 1e-4f);
+    params.fitSpineToAddedPieces = true;
+    const BladeFit all = fitArchetype(s, params);
+    EXPECT_GT(glm::distance(all.spineCamera_m.v1, kCurve.v1), 5e-4f);
+}
+
 TEST(BladeFit, LocalFrameHasRootAtOriginBaseTangentAlongYAndBendTowardPlusX) {
     // Camera-space blade growing up the image (-y) and bending toward -x.
     const QuadraticBezier cam{{0.1f, 0.1f, 0.6f}, {0.1f, 0.04f, 0.6f}, {0.06f, 0.0f, 0.61f}};

@@ -23,7 +23,7 @@ namespace meadow::modeling {
 struct SpineFit {
     QuadraticBezier spine_m;
     std::vector<float> t;  // parameter of each input point's closest spine point
-    float rms_m = 0.f;     // RMS distance of the points to the spine
+    float rms_m = 0.f;     // RMS distance of the points to the spine (weighted; weight 0 left out)
     float max_m = 0.f;
 };
 // Least-squares middle control point with v0 and v2 fixed, for given parameters t_j:
@@ -39,9 +39,12 @@ enum class SpineTip { AtLastPoint, LeastSquares };
 // Fits a quadratic Bezier with v0 = points.front() (and v2 = points.back() with AtLastPoint):
 // chord-length parameters and the closed-form v1, then alternately Newton steps per point on
 // f(t) = (B(t) - P) . B'(t) (parameter correction, Hoschek 1988) and a tangent-distance
-// Gauss-Newton update of the free control points (see blade_fit_spine.cpp). Requires >= 3 points.
+// Gauss-Newton update of the free control points (see blade_fit_spine.cpp). `weights` (one per
+// point, >= 0; empty: all 1) scale each point's residual: 0 leaves a point out of the fit, though
+// it still gets its parameter t. Requires >= 3 points.
 SpineFit fitQuadraticBezier(const std::vector<glm::vec3>& points_m, int iterations = 20,
-                            SpineTip tip = SpineTip::AtLastPoint);
+                            SpineTip tip = SpineTip::AtLastPoint,
+                            const std::vector<float>& weights = {});
 
 // ---- Blade-local frame (blade_fit_frame.cpp) ------------------------------------------------
 // local = localFromCamera * (camera - origin_m). +Y along the spine's base tangent, +X toward the
@@ -87,6 +90,11 @@ struct BladeFitParams {
     // The blades are rooted (v0 at the skeleton's base end); the tip is fitted, since the
     // skeleton's last point is its least certain (see SpineTip).
     SpineTip spineTip = SpineTip::LeastSquares;
+    // The skeleton's added pieces, the straight root piece down to the tuft's base (blade_root.h)
+    // and the straight tip extension (blade_tip.h), are guesses, not readings: when false their
+    // inner points are left out of the spine fit, which keeps v0 at the root and takes the tip's
+    // length from the extension's end, and the shape between from what was seen.
+    bool fitSpineToAddedPieces = false;
     // Width profile: `widthSamples` values, or, when widthTolerance_m > 0, the fewest (>= 2, <=
     // widthSamples) whose mean absolute error against the measured widths is within tolerance.
     int widthSamples = 16;
