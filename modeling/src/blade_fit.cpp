@@ -79,7 +79,7 @@ BladeFit fitArchetype(const Skeleton& skeleton, const BladeFitParams& params, co
                             " skeleton points (need >= 3 with widths); check the contour");
     BladeFit out;
     out.skeleton = skeleton;
-    const SpineFit spine = fitQuadraticBezier(points, params.spineIterations, params.spineTip,
+    const SpineFit spine = fitQuadraticBezier(points, params.spineIterations, params.spineEnds,
                                               spineWeights(skeleton, params));
     const float length_m = spine.spine_m.length();
     if (!(length_m > 0.f))

@@ -13,10 +13,10 @@
 namespace meadow::modeling {
 namespace {
 
-// Newton steps on the parameters between two solves for v1. The alternation converges linearly;
-// several parameter steps per solve make each outer iteration count.
+// Newton steps on the parameters between two control point updates. The alternation converges
+// linearly; several parameter steps per solve make each outer iteration count.
 constexpr int kNewtonStepsPerIteration = 3;
-// Weight of the plain least-squares term in the v1 update (see fitQuadraticBezier).
+// Weight of the plain least-squares term in the control point update (stepControlPoints).
 constexpr double kRegularisation = 1e-3;
 
 }  // namespace
@@ -42,9 +42,10 @@ namespace {
 
 // The residual of point j minus, where its parameter can still slide along the curve, the part
 // along the tangent: at the closest point that part is absorbed by t (tangent distance
-// minimisation, Wang, Pottmann & Liu 2006, Sec. 4). A point held at an end of the curve (the last
-// point with a free tip, a point whose closest parameter is clamped to 0 or 1) cannot slide, so
-// all of its residual counts: without that a free tip could retract past such points for free.
+// minimisation, Wang, Pottmann & Liu 2006, Sec. 4). A point held at an end of the curve (the first
+// or last point where that end is fitted, a point whose closest parameter is clamped to 0 or 1)
+// cannot slide, so all of its residual counts: without that a fitted end could retract past such
+// points for free.
 glm::dmat3 residualProjector(const QuadraticBezier& B, float t, bool atEnd) {
     if (atEnd) return glm::dmat3(1.0);
     const glm::dvec3 d{B.tangent(t)};
@@ -53,66 +54,60 @@ glm::dmat3 residualProjector(const QuadraticBezier& B, float t, bool atEnd) {
     return glm::dmat3(1.0) - glm::outerProduct(u, u);
 }
 
-// One Gauss-Newton step on v1 alone (v0 and v2 fixed at the ends). A small multiple of the plain
-// least-squares term keeps the 3x3 system regular for a straight spine, whose tangents are all
-// parallel. False when no interior point constrains v1.
-bool stepMiddleControlPoint(const std::vector<glm::vec3>& points, const std::vector<float>& t,
-                            const std::vector<float>& weights, QuadraticBezier& B) {
-    glm::dmat3 A{0.0};
-    glm::dvec3 g{0.0};
-    double bSum = 0.0;
-    for (std::size_t j = 1; j + 1 < points.size(); ++j) {
-        const double b = 2.0 * (1.0 - t[j]) * t[j];
-        const double w = weights.empty() ? 1.0 : weights[j];
-        const glm::dmat3 P = residualProjector(B, t[j], t[j] <= 0.f || t[j] >= 1.f);
-        const glm::dvec3 r{B.at(t[j]) - points[j]};
-        A += w * b * b * P;
-        g += w * b * (P * r);
-        bSum += w * b * b;
-    }
-    if (bSum <= 0.0) return false;
-    A += kRegularisation * bSum * glm::dmat3(1.0);
-    B.v1 -= glm::vec3(glm::inverse(A) * g);
-    return true;
-}
-
-// One Gauss-Newton step on v1 and v2 together (v0 fixed at the root): the residual of point j is
-// linear in them, B(t_j) = (1 - t_j)^2 v0 + b_j v1 + t_j^2 v2, so the 6x6 normal equations are
-// sums of the 3x3 blocks w_a w_b P_j with w = (b_j, t_j^2). The last point keeps t = 1.
-bool stepMiddleAndTip(const std::vector<glm::vec3>& points, const std::vector<float>& t,
-                      const std::vector<float>& weights, QuadraticBezier& B) {
-    cv::Matx66d A = cv::Matx66d::zeros();
-    cv::Vec6d g = cv::Vec6d::all(0.0);
+// One Gauss-Newton step on the free control points: v1 always, v2 unless the ends are pinned, v0
+// when both ends are fitted. B(t_j) = (1 - t_j)^2 v0 + 2 (1 - t_j) t_j v1 + t_j^2 v2 is linear in
+// them, so the normal equations are sums of 3x3 blocks w_a w_b P_j over the free points' Bernstein
+// weights w. A small multiple of the plain least-squares term keeps the system regular for a
+// straight spine, whose tangents are all parallel. False when no point constrains the step.
+bool stepControlPoints(const std::vector<glm::vec3>& points, const std::vector<float>& t,
+                       const std::vector<float>& weights, SpineEnds ends, QuadraticBezier& B) {
+    const std::size_t n = points.size();
+    const bool fitRoot = ends == SpineEnds::Fitted, fitTip = ends != SpineEnds::AtEndPoints;
+    std::vector<int> free;  // control point indices
+    if (fitRoot) free.push_back(0);
+    free.push_back(1);
+    if (fitTip) free.push_back(2);
+    const int size = 3 * static_cast<int>(free.size());
+    cv::Mat1d A(size, size, 0.0), g(size, 1, 0.0);
     double diagonal = 0.0;
-    for (std::size_t j = 1; j < points.size(); ++j) {
-        const double w[2] = {2.0 * (1.0 - t[j]) * t[j], static_cast<double>(t[j]) * t[j]};
+    for (std::size_t j = 0; j < n; ++j) {
+        const bool first = j == 0, last = j + 1 == n;
+        // A pinned end's point is the control point itself: it has no residual.
+        if ((first && !fitRoot) || (last && !fitTip)) continue;
         const double weight = weights.empty() ? 1.0 : weights[j];
         if (weight <= 0.0) continue;
+        const double tj = t[j];
+        const double bernstein[3] = {(1.0 - tj) * (1.0 - tj), 2.0 * (1.0 - tj) * tj, tj * tj};
         const glm::dmat3 P =
-            weight *
-            residualProjector(B, t[j], j + 1 == points.size() || t[j] <= 0.f || t[j] >= 1.f);
+            weight * residualProjector(B, t[j], first || last || t[j] <= 0.f || t[j] >= 1.f);
         const glm::dvec3 Pr = P * glm::dvec3(B.at(t[j]) - points[j]);
-        for (int a = 0; a < 2; ++a)
+        for (std::size_t a = 0; a < free.size(); ++a) {
+            const double wa = bernstein[free[a]];
             for (int row = 0; row < 3; ++row) {
-                g[3 * a + row] += w[a] * Pr[row];
-                for (int b = 0; b < 2; ++b)
+                g(3 * static_cast<int>(a) + row) += wa * Pr[row];
+                for (std::size_t b = 0; b < free.size(); ++b)
                     for (int col = 0; col < 3; ++col)
-                        A(3 * a + row, 3 * b + col) += w[a] * w[b] * P[col][row];
+                        A(3 * static_cast<int>(a) + row, 3 * static_cast<int>(b) + col) +=
+                            wa * bernstein[free[b]] * P[col][row];
             }
-        diagonal += weight * (w[0] * w[0] + w[1] * w[1]);
+            diagonal += weight * wa * wa;
+        }
     }
     if (diagonal <= 0.0) return false;
-    for (int i = 0; i < 6; ++i) A(i, i) += kRegularisation * diagonal;
-    cv::Vec6d step;
+    A += cv::Mat1d::eye(size, size) * (kRegularisation * diagonal);
+    cv::Mat1d step;
     if (!cv::solve(A, g, step, cv::DECOMP_CHOLESKY)) return false;
-    B.v1 -= glm::vec3(step[0], step[1], step[2]);
-    B.v2 -= glm::vec3(step[3], step[4], step[5]);
+    glm::vec3* control[3] = {&B.v0, &B.v1, &B.v2};
+    for (std::size_t a = 0; a < free.size(); ++a)
+        *control[free[a]] -=
+            glm::vec3(step(3 * static_cast<int>(a)), step(3 * static_cast<int>(a) + 1),
+                      step(3 * static_cast<int>(a) + 2));
     return true;
 }
 
 }  // namespace
 
-SpineFit fitQuadraticBezier(const std::vector<glm::vec3>& points, int iterations, SpineTip tip,
+SpineFit fitQuadraticBezier(const std::vector<glm::vec3>& points, int iterations, SpineEnds ends,
                             const std::vector<float>& weights) {
     const std::size_t n = points.size();
     if (n < 3)
@@ -147,10 +142,7 @@ SpineFit fitQuadraticBezier(const std::vector<glm::vec3>& points, int iterations
         // converges only linearly (slowly when the chord parameters are far off), so the update
         // minimises the squared distances to the curve to first order instead (Gauss-Newton with
         // the residuals' tangential parts left out where t absorbs them, residualProjector).
-        const bool moved = tip == SpineTip::LeastSquares
-                               ? stepMiddleAndTip(points, fit.t, weights, B)
-                               : stepMiddleControlPoint(points, fit.t, weights, B);
-        if (!moved) break;
+        if (!stepControlPoints(points, fit.t, weights, ends, B)) break;
     }
     double sum2 = 0.0, weightSum = 0.0;
     for (std::size_t j = 0; j < n; ++j) {

@@ -41,7 +41,7 @@ TEST(BladeFit, NewtonReparameterisationRecoversCurveFromUnevenSamples) {
     EXPECT_THROW(fitQuadraticBezier({{0, 0, 0}, {1, 0, 0}}), std::invalid_argument);
     // The free tip recovers the same curve. (Projecting the last point's residual as the
     // interior ones are let the tip retract for free: v1 came out 0.44 mm off here.)
-    const SpineFit free = fitQuadraticBezier(pts, 20, SpineTip::LeastSquares);
+    const SpineFit free = fitQuadraticBezier(pts, 20, SpineEnds::RootAtFirstPoint);
     EXPECT_LT(glm::distance(free.spine_m.v1, kCurve.v1), 2e-5f);
     EXPECT_LT(glm::distance(free.spine_m.v2, kCurve.v2), 2e-5f);
     EXPECT_LT(free.rms_m, 1e-5f);
@@ -53,12 +53,33 @@ TEST(BladeFit, AFittedTipAveragesAnOffsetLastPointThatAFixedTipTakesWhole) {
     std::vector<glm::vec3> pts;
     for (int i = 0; i <= 40; ++i) pts.push_back(kCurve.at(i / 40.f));
     pts.back() += glm::vec3(0.f, 0.f, 0.002f);
-    const SpineFit fixed = fitQuadraticBezier(pts, 20, SpineTip::AtLastPoint);
-    const SpineFit free = fitQuadraticBezier(pts, 20, SpineTip::LeastSquares);
+    const SpineFit fixed = fitQuadraticBezier(pts, 20, SpineEnds::AtEndPoints);
+    const SpineFit free = fitQuadraticBezier(pts, 20, SpineEnds::RootAtFirstPoint);
     EXPECT_NEAR(glm::distance(fixed.spine_m.v2, kCurve.v2), 0.002f, 1e-6f);
     // Measured 0.37 mm: the other 40 points hold the curve, and v1 and v2 share the pull.
     EXPECT_LT(glm::distance(free.spine_m.v2, kCurve.v2), 0.0006f);
     EXPECT_LT(free.rms_m, fixed.rms_m);
+}
+
+TEST(BladeFit, AFittedRootAveragesAnOffsetFirstPoint) {
+    // The skeleton's first point is the tuft's one base point; a blade's own root lies a few
+    // millimetres from it. Here it is 3 mm off, sideways, on an otherwise exact sampling.
+    std::vector<glm::vec3> pts;
+    for (int i = 0; i <= 40; ++i) pts.push_back(kCurve.at(i / 40.f));
+    pts.front() += glm::vec3(0.003f, 0.f, 0.f);
+    const SpineFit pinned = fitQuadraticBezier(pts, 20, SpineEnds::RootAtFirstPoint);
+    const SpineFit fitted = fitQuadraticBezier(pts, 20, SpineEnds::Fitted);
+    EXPECT_NEAR(glm::distance(pinned.spine_m.v0, kCurve.v0), 0.003f, 1e-6f);
+    // Measured 1.05 mm: with both ends free the curve gives the offset point a third of it.
+    EXPECT_LT(glm::distance(fitted.spine_m.v0, kCurve.v0), 0.0015f);
+    EXPECT_LT(glm::distance(fitted.spine_m.v2, kCurve.v2), 0.0005f);
+    EXPECT_LT(fitted.rms_m, pinned.rms_m);
+    // Exact samples: nothing to move.
+    pts.front() = kCurve.v0;
+    const SpineFit exact = fitQuadraticBezier(pts, 20, SpineEnds::Fitted);
+    EXPECT_LT(glm::distance(exact.spine_m.v0, kCurve.v0), 2e-5f);
+    EXPECT_LT(glm::distance(exact.spine_m.v1, kCurve.v1), 2e-5f);
+    EXPECT_LT(glm::distance(exact.spine_m.v2, kCurve.v2), 2e-5f);
 }
 
 TEST(BladeFit, PointsOfWeightZeroDoNotShapeTheSpine) {
@@ -68,14 +89,14 @@ TEST(BladeFit, PointsOfWeightZeroDoNotShapeTheSpine) {
     for (int i = 0; i <= 40; ++i) pts.push_back(kCurve.at(i / 40.f));
     std::vector<float> weights(pts.size(), 1.f);
     for (int i = 1; i <= 8; ++i) pts[i].x += 0.005f, weights[i] = 0.f;
-    const SpineFit all = fitQuadraticBezier(pts, 20, SpineTip::LeastSquares);
-    const SpineFit measured = fitQuadraticBezier(pts, 20, SpineTip::LeastSquares, weights);
+    const SpineFit all = fitQuadraticBezier(pts, 20, SpineEnds::RootAtFirstPoint);
+    const SpineFit measured = fitQuadraticBezier(pts, 20, SpineEnds::RootAtFirstPoint, weights);
     EXPECT_GT(glm::distance(all.spine_m.v1, kCurve.v1), 1e-3f);
     EXPECT_LT(glm::distance(measured.spine_m.v1, kCurve.v1), 2e-5f);
     EXPECT_LT(glm::distance(measured.spine_m.v2, kCurve.v2), 2e-5f);
     EXPECT_LT(measured.rms_m, 1e-5f);  // over the points that count
     EXPECT_EQ(measured.t.size(), pts.size());
-    EXPECT_THROW(fitQuadraticBezier(pts, 20, SpineTip::LeastSquares, {1.f, 1.f}),
+    EXPECT_THROW(fitQuadraticBezier(pts, 20, SpineEnds::RootAtFirstPoint, {1.f, 1.f}),
                  std::invalid_argument);
 }
 

@@ -62,14 +62,15 @@ constexpr int kWidthComparisonSamples = 50;
 // With the base on the cluster's lowest row and dropped onto the ground plane (blade_root.h):
 // mean v0 error 3.8 mm (seed 1; seeds 2 and 3: 6.6 and 6.4 mm), was 7.3 / 8.5 / 9.8 mm. Seed 2
 // measures 8.1 mm since the shorter tip extension: one fragment of a blade cut in two is no
-// longer rooted. With the edge smoothed along the contour: 3.7 / 8.0 / 6.3 mm.
+// longer rooted. With the edge smoothed along the contour: 3.7 / 8.0 / 6.3 mm. With the spine's
+// root fitted instead of pinned to the base point (SpineEnds::Fitted): 3.0 / 6.6 / 5.0 mm.
 constexpr float kMaxLeafV0Error_mm = 8.f;
 // With the tip extension (blade_tip.h): measured 4.2 %, 12.9 mm and 10.3 % (seed 1); without it
 // 11.8 %, 24.8 mm and 14.6 %. With the segmenter's tip trails, the readings held to the
 // tuft's depth range and the shorter extension caps (blade_tip.h): height error
 // 1.9 / 3.6 / 3.3 % and tip RMS 6.1 / 5.7 / 6.6 mm (seeds 1 / 2 / 3), were 3.9 / 3.7 / 5.7 %
 // and 12.2 / 8.2 / 18.0 mm. With the edge smoothed along the contour: 1.8 / 3.6 / 3.2 % and
-// 5.9 / 5.8 / 6.2 mm. With the tip fitted with the spine (SpineTip::LeastSquares): 1.8 / 3.6 /
+// 5.9 / 5.8 / 6.2 mm. With the tip fitted with the spine (SpineEnds::RootAtFirstPoint): 1.8 / 3.6 /
 // 3.1 % and 5.4 / 5.6 / 5.4 mm, so the tip bound came down from 10 to 8 mm; with the root piece
 // and the tip extension left out of the spine fit, 1.8 / 3.6 / 3.1 % and 5.4 / 5.5 / 5.3 mm.
 constexpr float kMaxLeafHeightError = 0.05f;

@@ -31,19 +31,21 @@ struct SpineFit {
 glm::vec3 leastSquaresMiddleControlPoint(const std::vector<glm::vec3>& points,
                                          const std::vector<float>& t, const glm::vec3& v0,
                                          const glm::vec3& v2);
-// Where the fitted spine ends. AtLastPoint: v2 = points.back(), the closed form's setting.
-// LeastSquares: v2 is fitted with v1, the last point held at t = 1 as one residual among all, so
-// the tip's position averages the whole skeleton's shape instead of resting on its noisiest point
-// (a tip 1-3 px wide).
-enum class SpineTip { AtLastPoint, LeastSquares };
-// Fits a quadratic Bezier with v0 = points.front() (and v2 = points.back() with AtLastPoint):
-// chord-length parameters and the closed-form v1, then alternately Newton steps per point on
-// f(t) = (B(t) - P) . B'(t) (parameter correction, Hoschek 1988) and a tangent-distance
-// Gauss-Newton update of the free control points (see blade_fit_spine.cpp). `weights` (one per
-// point, >= 0; empty: all 1) scale each point's residual: 0 leaves a point out of the fit, though
-// it still gets its parameter t. Requires >= 3 points.
+// Which control points the spine fit moves. AtEndPoints: v0 = points.front() and v2 =
+// points.back(), the closed form's setting. RootAtFirstPoint: v2 is fitted with v1 as well, the
+// last point held at t = 1 as one residual among all, so the tip's position follows the whole
+// skeleton's shape instead of resting on its least certain point (a tip 1-3 px wide). Fitted: v0
+// too, the first point held at t = 0 the same way: a tuft's one base point is not every blade's
+// root (bases lie millimetres apart), so it counts as one observation of where the blade starts.
+enum class SpineEnds { AtEndPoints, RootAtFirstPoint, Fitted };
+// Fits a quadratic Bezier: chord-length parameters, v0 and v2 at the first and last points and
+// the closed-form v1, then alternately Newton steps per point on f(t) = (B(t) - P) . B'(t)
+// (parameter correction, Hoschek 1988) and a tangent-distance Gauss-Newton update of the control
+// points `ends` leaves free (see blade_fit_spine.cpp). `weights` (one per point, >= 0; empty: all
+// 1) scale each point's residual: 0 leaves a point out of the fit, though it still gets its
+// parameter t. Requires >= 3 points.
 SpineFit fitQuadraticBezier(const std::vector<glm::vec3>& points_m, int iterations = 20,
-                            SpineTip tip = SpineTip::AtLastPoint,
+                            SpineEnds ends = SpineEnds::AtEndPoints,
                             const std::vector<float>& weights = {});
 
 // ---- Blade-local frame (blade_fit_frame.cpp) ------------------------------------------------
@@ -87,13 +89,13 @@ ShapeFit nearestAnalyticShape(const WidthProfile& profile);
 struct BladeFitParams {
     SkeletonParams skeleton;
     int spineIterations = 20;
-    // The blades are rooted (v0 at the skeleton's base end); the tip is fitted, since the
-    // skeleton's last point is its least certain (see SpineTip).
-    SpineTip spineTip = SpineTip::LeastSquares;
+    // Both ends fitted (see SpineEnds): the skeleton's first point is the tuft's base, its last
+    // the end of a thin tip or of the tip extension.
+    SpineEnds spineEnds = SpineEnds::Fitted;
     // The skeleton's added pieces, the straight root piece down to the tuft's base (blade_root.h)
     // and the straight tip extension (blade_tip.h), are guesses, not readings: when false their
-    // inner points are left out of the spine fit, which keeps v0 at the root and takes the tip's
-    // length from the extension's end, and the shape between from what was seen.
+    // inner points are left out of the spine fit: their ends, the tuft's base and the
+    // extension's end, still count, and the shape between comes from what was seen.
     bool fitSpineToAddedPieces = false;
     // Width profile: `widthSamples` values, or, when widthTolerance_m > 0, the fewest (>= 2, <=
     // widthSamples) whose mean absolute error against the measured widths is within tolerance.
