@@ -19,6 +19,13 @@ using test::renderBlade;
 
 const QuadraticBezier kCurve{{0.f, 0.f, 0.f}, {0.01f, 0.06f, 0.002f}, {0.05f, 0.1f, 0.f}};
 
+// kCurve at 41 evenly spaced parameters, both ends included.
+std::vector<glm::vec3> evenSamplesOfCurve() {
+    std::vector<glm::vec3> pts;
+    for (int i = 0; i <= 40; ++i) pts.push_back(kCurve.at(static_cast<float>(i) / 40.f));
+    return pts;
+}
+
 TEST(BladeFit, MiddleControlPointClosedFormIsExactForExactParameters) {
     std::vector<glm::vec3> pts;
     std::vector<float> t;
@@ -47,14 +54,24 @@ TEST(BladeFit, NewtonReparameterisationRecoversCurveFromUnevenSamples) {
     EXPECT_LT(free.rms_m, 1e-5f);
 }
 
+// An exact sampling of kCurve with its first or last point moved by `offset`, fitted with that
+// end pinned to the point and with it fitted (the other end as the default fit has it).
+struct OffsetEndFits {
+    SpineFit pinned, fitted;
+};
+OffsetEndFits fitsWithOffsetEnd(bool lastPoint, glm::vec3 offset) {
+    std::vector<glm::vec3> pts = evenSamplesOfCurve();
+    (lastPoint ? pts.back() : pts.front()) += offset;
+    return {
+        fitQuadraticBezier(pts, 20,
+                           lastPoint ? SpineEnds::AtEndPoints : SpineEnds::RootAtFirstPoint),
+        fitQuadraticBezier(pts, 20, lastPoint ? SpineEnds::RootAtFirstPoint : SpineEnds::Fitted)};
+}
+
 TEST(BladeFit, AFittedTipAveragesAnOffsetLastPointThatAFixedTipTakesWhole) {
     // A skeleton's last point is its least certain (a tip 1-3 px wide): 2 mm off the curve here,
     // across it, on an otherwise exact sampling.
-    std::vector<glm::vec3> pts;
-    for (int i = 0; i <= 40; ++i) pts.push_back(kCurve.at(i / 40.f));
-    pts.back() += glm::vec3(0.f, 0.f, 0.002f);
-    const SpineFit fixed = fitQuadraticBezier(pts, 20, SpineEnds::AtEndPoints);
-    const SpineFit free = fitQuadraticBezier(pts, 20, SpineEnds::RootAtFirstPoint);
+    const auto [fixed, free] = fitsWithOffsetEnd(true, {0.f, 0.f, 0.002f});
     EXPECT_NEAR(glm::distance(fixed.spine_m.v2, kCurve.v2), 0.002f, 1e-6f);
     // Measured 0.37 mm: the other 40 points hold the curve, and v1 and v2 share the pull.
     EXPECT_LT(glm::distance(free.spine_m.v2, kCurve.v2), 0.0006f);
@@ -64,19 +81,14 @@ TEST(BladeFit, AFittedTipAveragesAnOffsetLastPointThatAFixedTipTakesWhole) {
 TEST(BladeFit, AFittedRootAveragesAnOffsetFirstPoint) {
     // The skeleton's first point is the tuft's one base point; a blade's own root lies a few
     // millimetres from it. Here it is 3 mm off, sideways, on an otherwise exact sampling.
-    std::vector<glm::vec3> pts;
-    for (int i = 0; i <= 40; ++i) pts.push_back(kCurve.at(i / 40.f));
-    pts.front() += glm::vec3(0.003f, 0.f, 0.f);
-    const SpineFit pinned = fitQuadraticBezier(pts, 20, SpineEnds::RootAtFirstPoint);
-    const SpineFit fitted = fitQuadraticBezier(pts, 20, SpineEnds::Fitted);
+    const auto [pinned, fitted] = fitsWithOffsetEnd(false, {0.003f, 0.f, 0.f});
     EXPECT_NEAR(glm::distance(pinned.spine_m.v0, kCurve.v0), 0.003f, 1e-6f);
     // Measured 1.05 mm: with both ends free the curve gives the offset point a third of it.
     EXPECT_LT(glm::distance(fitted.spine_m.v0, kCurve.v0), 0.0015f);
     EXPECT_LT(glm::distance(fitted.spine_m.v2, kCurve.v2), 0.0005f);
     EXPECT_LT(fitted.rms_m, pinned.rms_m);
     // Exact samples: nothing to move.
-    pts.front() = kCurve.v0;
-    const SpineFit exact = fitQuadraticBezier(pts, 20, SpineEnds::Fitted);
+    const SpineFit exact = fitQuadraticBezier(evenSamplesOfCurve(), 20, SpineEnds::Fitted);
     EXPECT_LT(glm::distance(exact.spine_m.v0, kCurve.v0), 2e-5f);
     EXPECT_LT(glm::distance(exact.spine_m.v1, kCurve.v1), 2e-5f);
     EXPECT_LT(glm::distance(exact.spine_m.v2, kCurve.v2), 2e-5f);
@@ -85,8 +97,7 @@ TEST(BladeFit, AFittedRootAveragesAnOffsetFirstPoint) {
 TEST(BladeFit, PointsOfWeightZeroDoNotShapeTheSpine) {
     // The skeleton's root piece is a straight guess from the tuft's base up to the blade: here
     // its stand-ins, points 1-8, sit 5 mm off the curve. Left out, they do not bend the spine.
-    std::vector<glm::vec3> pts;
-    for (int i = 0; i <= 40; ++i) pts.push_back(kCurve.at(i / 40.f));
+    std::vector<glm::vec3> pts = evenSamplesOfCurve();
     std::vector<float> weights(pts.size(), 1.f);
     for (int i = 1; i <= 8; ++i) pts[i].x += 0.005f, weights[i] = 0.f;
     const SpineFit all = fitQuadraticBezier(pts, 20, SpineEnds::RootAtFirstPoint);
