@@ -32,8 +32,9 @@ WidthProfile profileWithinTolerance(const std::vector<float>& s, const std::vect
 // Algorithm 1's kept knots: refinedKnots of them, or, under a knot tolerance, the fewest whose
 // polyline stays within it over the simulated frames. One run of the greedy steps gives every
 // count's knots (movementSimilarityDropOrder); a binary search over the count then checks the
-// deviation. It grows as knots go, if not strictly, so the count found is checked, and the next
-// larger ones tried while it fails.
+// deviation. The count it ends on passed its check, or is refinedKnots when no count tried did.
+// The deviation grows as knots go, if not strictly, so a smaller count off the search's path
+// might pass too: the search finds a passing count, not always the least.
 std::vector<int> keptKnots(const KnotTrajectories& frames, const BladeFitParams& params) {
     const int all = static_cast<int>(frames.front().size());
     const int most = std::min(params.refinedKnots, all);
@@ -51,7 +52,6 @@ std::vector<int> keptKnots(const KnotTrajectories& frames, const BladeFitParams&
         else
             lo = mid + 1;
     }
-    while (lo < most && !within(lo)) ++lo;
     return keptAfterDrops(all, order, lo);
 }
 

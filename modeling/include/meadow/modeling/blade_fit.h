@@ -102,9 +102,9 @@ struct BladeFitParams {
     int widthSamples = 16;
     float widthTolerance_m = 0.f;
     // Refined knot count (Fan & Sheng 2017, Algorithm 1); 0 skips refining. When
-    // knotTolerance_m > 0 it is the most knots kept: the fewest (>= 2) are kept whose polyline
-    // stays within the tolerance of every skeleton knot in every simulated frame
-    // (maxDeviation_m), or refinedKnots when no fewer do.
+    // knotTolerance_m > 0 it is the most knots kept: a binary search over the count (>= 2) keeps
+    // the fewest it finds whose polyline stays within the tolerance of every skeleton knot in
+    // every simulated frame (maxDeviation_m), or refinedKnots when no count it tries does.
     int refinedKnots = 16;
     float knotTolerance_m = 0.f;
     RefinerParams refiner;
