@@ -68,10 +68,7 @@ void runCapture(CaptureArgs& args) {
     modeling::CaptureOptions options = args.options;
     options.debugDir = args.debug;
     options.segmenter.planeMethod = planeMethod(args.plane);
-    if (args.tolerance_mm > 0.f) {
-        options.fit.widthTolerance_m = args.tolerance_mm * 1e-3f;
-        options.fit.knotTolerance_m = args.tolerance_mm * 1e-3f;
-    }
+    options.fit.setTolerance_m(args.tolerance_mm * 1e-3f);
 
     auto source = capture::openDepthSource(args.source, toSourceOptions(args.sourceArgs));
     const int frames = source->info().frameCount;

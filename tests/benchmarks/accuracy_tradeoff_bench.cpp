@@ -756,8 +756,7 @@ void modelingTradeoff(const Plan& plan, const std::vector<Scene>& scenes, const 
     }
     for (float tol : kTolerances_mm) {  // as `meadow capture --tolerance-mm`: widths and knots
         CaptureOptions o;
-        o.fit.widthTolerance_m = tol / kMillimetresPerMetre;
-        o.fit.knotTolerance_m = tol / kMillimetresPerMetre;
+        o.fit.setTolerance_m(tol / kMillimetresPerMetre);
         configs.push_back({"tolerance-mm", fixed(tol, 1), o});
     }
     std::ostringstream csv, md;

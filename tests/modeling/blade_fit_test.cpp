@@ -231,6 +231,17 @@ TEST(BladeFit, WidthToleranceGivesFewerSamplesForSimpleShape) {
     EXPECT_LE(fit.archetype.fit.widthMae_mm, 0.2f);
 }
 
+// `meadow capture --tolerance-mm` and the trade-off bench set both tolerances through one call.
+TEST(BladeFit, OneToleranceSetsTheWidthAndTheKnotTolerance) {
+    BladeFitParams params;
+    params.setTolerance_m(0.5e-3f);
+    EXPECT_FLOAT_EQ(params.widthTolerance_m, 0.5e-3f);
+    EXPECT_FLOAT_EQ(params.knotTolerance_m, 0.5e-3f);
+    params.setTolerance_m(-1.f);  // off, as --tolerance-mm 0
+    EXPECT_EQ(params.widthTolerance_m, 0.f);
+    EXPECT_EQ(params.knotTolerance_m, 0.f);
+}
+
 // Under a knot tolerance the refiner keeps the fewest knots whose polyline stays within it of
 // every skeleton knot over the simulated frames: fewer for a looser tolerance, two for a loose
 // one, the most allowed (refinedKnots) for one no refining can meet, and the rest pose within the

@@ -111,6 +111,14 @@ struct BladeFitParams {
     ChainSimulationParams simulation;  // up and gravity are overridden to the blade-local +Y
     RootParams root;                   // rooting at the tuft's base (fitSegmentedBlade only)
     TipParams tip;                     // continuing past the visible tip (fitSegmentedBlade only)
+
+    // One user tolerance (`meadow capture --tolerance-mm`) for both: the width profile's mean
+    // error and the refined knots' deviation. A tolerance <= 0 leaves both off.
+    void setTolerance_m(float tolerance_m) {
+        const float t = tolerance_m > 0.f ? tolerance_m : 0.f;
+        widthTolerance_m = t;
+        knotTolerance_m = t;
+    }
 };
 
 struct BladeFit {
