@@ -23,15 +23,17 @@ constexpr double kRegularisation = 1e-3;
 
 glm::vec3 leastSquaresMiddleControlPoint(const std::vector<glm::vec3>& points,
                                          const std::vector<float>& t, const glm::vec3& v0,
-                                         const glm::vec3& v2) {
+                                         const glm::vec3& v2, const std::vector<float>& weights) {
     glm::dvec3 numerator{0.0};
     double denominator = 0.0;
     for (std::size_t j = 0; j < points.size(); ++j) {
+        const double w = weights.empty() ? 1.0 : weights[j];
+        if (!(w > 0.0)) continue;
         const double tj = t[j], s = 1.0 - tj;
         const double b = 2.0 * s * tj;
         numerator +=
-            b * (glm::dvec3(points[j]) - s * s * glm::dvec3(v0) - tj * tj * glm::dvec3(v2));
-        denominator += b * b;
+            w * b * (glm::dvec3(points[j]) - s * s * glm::dvec3(v0) - tj * tj * glm::dvec3(v2));
+        denominator += w * b * b;
     }
     // All parameters at the ends: v1 is free; the straight line's midpoint is the natural choice.
     if (denominator <= 1e-12) return 0.5f * (v0 + v2);
@@ -125,7 +127,7 @@ SpineFit fitQuadraticBezier(const std::vector<glm::vec3>& points, int iterations
     QuadraticBezier& B = fit.spine_m;
     B.v0 = points.front();
     B.v2 = points.back();
-    B.v1 = leastSquaresMiddleControlPoint(points, fit.t, B.v0, B.v2);
+    B.v1 = leastSquaresMiddleControlPoint(points, fit.t, B.v0, B.v2, weights);
     for (int it = 0; it < iterations; ++it) {
         // Parameter correction: Newton steps on f(t) = (B(t) - P) . B'(t) per interior point.
         const glm::vec3 second = 2.f * (B.v0 - 2.f * B.v1 + B.v2);  // B''(t), constant

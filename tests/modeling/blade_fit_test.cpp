@@ -34,6 +34,23 @@ TEST(BladeFit, MiddleControlPointClosedFormIsExactForExactParameters) {
     EXPECT_LT(glm::distance(v1, kCurve.v1), 1e-6f);
 }
 
+// The spine fit's first guess honours the point weights: a point of weight 0 (an added root
+// piece's or tip extension's inner point) does not pull it.
+TEST(BladeFit, MiddleControlPointClosedFormLeavesOutPointsOfWeightZero) {
+    std::vector<glm::vec3> pts;
+    std::vector<float> t, weights;
+    for (int i = 0; i <= 10; ++i)
+        t.push_back(i / 10.f), pts.push_back(kCurve.at(i / 10.f)), weights.push_back(1.f);
+    pts[5] += glm::vec3(0.02f, 0.f, 0.f);
+    EXPECT_GT(
+        glm::distance(leastSquaresMiddleControlPoint(pts, t, kCurve.v0, kCurve.v2), kCurve.v1),
+        5e-3f);
+    weights[5] = 0.f;
+    EXPECT_LT(glm::distance(leastSquaresMiddleControlPoint(pts, t, kCurve.v0, kCurve.v2, weights),
+                            kCurve.v1),
+              1e-6f);
+}
+
 TEST(BladeFit, NewtonReparameterisationRecoversCurveFromUnevenSamples) {
     std::vector<glm::vec3> pts;
     for (int i = 0; i <= 40; ++i) {

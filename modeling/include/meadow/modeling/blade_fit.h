@@ -27,10 +27,12 @@ struct SpineFit {
     float max_m = 0.f;
 };
 // Least-squares middle control point with v0 and v2 fixed, for given parameters t_j:
-//   v1 = sum_j b_j (P_j - (1 - t_j)^2 v0 - t_j^2 v2) / sum_j b_j^2,  b_j = 2 (1 - t_j) t_j.
+//   v1 = sum_j w_j b_j (P_j - (1 - t_j)^2 v0 - t_j^2 v2) / sum_j w_j b_j^2,  b_j = 2 (1 - t_j) t_j,
+// with weights w_j (empty: all 1), as fitQuadraticBezier's.
 glm::vec3 leastSquaresMiddleControlPoint(const std::vector<glm::vec3>& points,
                                          const std::vector<float>& t, const glm::vec3& v0,
-                                         const glm::vec3& v2);
+                                         const glm::vec3& v2,
+                                         const std::vector<float>& weights = {});
 // Which control points the spine fit moves. AtEndPoints: v0 = points.front() and v2 =
 // points.back(), the closed form's setting. RootAtFirstPoint: v2 is fitted with v1 as well, the
 // last point held at t = 1 as one residual among all, so the tip's position follows the whole
