@@ -178,10 +178,10 @@ GlContext::GlContext(GlContextOptions options) : impl_(std::make_unique<Impl>())
     for (EGLDisplay d : displays)
         if ((ok = impl_->tryDisplay(d, options.debugOutput, why))) break;
     if (!ok)
-        throw RuntimeError("meadow::runtime::GlContext: no EGL display offers OpenGL " +
-                           std::to_string(kGlMajorVersion) + "." + std::to_string(kGlMinorVersion) +
-                           " core (" + std::to_string(displays.size()) + " displays tried:" + why +
-                           "); " + kInstallHint);
+        throw RuntimeError("no EGL display offers OpenGL " + std::to_string(kGlMajorVersion) + "." +
+                           std::to_string(kGlMinorVersion) + " core (" +
+                           std::to_string(displays.size()) + " displays tried:" + why + "); " +
+                           kInstallHint);
 
     auto glString = [](GLenum name) {
         const GLubyte* s = glGetString(name);
@@ -194,9 +194,8 @@ GlContext::GlContext(GlContextOptions options) : impl_(std::make_unique<Impl>())
     glGetIntegerv(GL_MAJOR_VERSION, &major);
     glGetIntegerv(GL_MINOR_VERSION, &minor);
     if (major * 10 + minor < kGlMajorVersion * 10 + kGlMinorVersion)
-        throw RuntimeError("meadow::runtime::GlContext: driver '" + impl_->renderer +
-                           "' gives OpenGL " + impl_->version + ", meadow needs 4.5 core; " +
-                           kInstallHint);
+        throw RuntimeError("driver '" + impl_->renderer + "' gives OpenGL " + impl_->version +
+                           ", meadow needs 4.5 core; " + kInstallHint);
     if (options.debugOutput) {
         impl_->debugOutput = true;
         glEnable(GL_DEBUG_OUTPUT);

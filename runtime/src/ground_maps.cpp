@@ -33,8 +33,7 @@ std::string densityMapProblem(const DensityMap& map) {
 
 cv::Mat loadDensityMap(const DensityMap& map) {
     const cv::Mat image = readDensityImage(map);
-    if (image.empty())
-        throw RuntimeError("meadow::runtime::loadScene: " + unreadableDensityMap(map));
+    if (image.empty()) throw RuntimeError(unreadableDensityMap(map));
     cv::Mat density;
     image.convertTo(density, CV_32F, image.depth() == CV_16U ? 1.0 / 65535.0 : 1.0 / 255.0);
     return density;
@@ -69,7 +68,7 @@ ArchetypeMapImage readArchetypeMap(const ArchetypeMap& map, std::size_t archetyp
 
 cv::Mat loadArchetypeMap(const ArchetypeMap& map, std::size_t archetypeCount) {
     ArchetypeMapImage m = readArchetypeMap(map, archetypeCount);
-    if (!m.problem.empty()) throw RuntimeError("meadow::runtime::loadScene: " + m.problem);
+    if (!m.problem.empty()) throw RuntimeError(m.problem);
     return m.indices;
 }
 

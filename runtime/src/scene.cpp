@@ -11,6 +11,7 @@
 #include "ground_maps.h"
 #include "meadow/modeling/archetype_library.h"
 #include "meadow/runtime/error.h"
+#include "short_number.h"
 
 namespace meadow::runtime {
 namespace {
@@ -26,8 +27,8 @@ public:
     explicit Reader(fs::path origin) : origin_(std::move(origin)) {}
 
     [[noreturn]] void fail(const std::string& where, const std::string& what) const {
-        throw RuntimeError("meadow::runtime::loadScene: " + origin_.string() + ": " + where + ": " +
-                           what + "; fix the scene file (README, \"Scene format\")");
+        throw RuntimeError(origin_.string() + ": " + where + ": " + what +
+                           "; fix the scene file (README, \"Scene format\")");
     }
 
     // Rejects keys the format does not define: a typo must not silently fall back to a default.
@@ -44,8 +45,8 @@ public:
         if (!v.is_number()) fail(where + "." + key, "expected a number");
         const double d = v.get<double>();
         if (!std::isfinite(d) || d < min || d > max)
-            fail(where + "." + key, "value " + v.dump() + " outside [" + std::to_string(min) +
-                                        ", " + std::to_string(max) + "]");
+            fail(where + "." + key, "value " + v.dump() + " outside [" + shortNumber(min) + ", " +
+                                        shortNumber(max) + "]");
         return static_cast<float>(d);
     }
 
@@ -56,8 +57,8 @@ public:
         if (!v.is_number_integer()) fail(where + "." + key, "expected an integer");
         const long long n = v.get<long long>();
         if (n < min || n > max)
-            fail(where + "." + key, "value " + v.dump() + " outside [" + std::to_string(min) +
-                                        ", " + std::to_string(max) + "]");
+            fail(where + "." + key, "value " + v.dump() + " outside [" + shortNumber(min) + ", " +
+                                        shortNumber(max) + "]");
         return static_cast<int>(n);
     }
 
@@ -91,8 +92,8 @@ public:
             fail(where + "." + key, "expected [min, max]");
         const glm::vec2 r{v[0].get<float>(), v[1].get<float>()};
         if (!(r.x <= r.y) || r.x < lo || r.y > hi)
-            fail(where + "." + key, "expected min <= max within [" + std::to_string(lo) + ", " +
-                                        std::to_string(hi) + "], got " + v.dump());
+            fail(where + "." + key, "expected min <= max within [" + shortNumber(lo) + ", " +
+                                        shortNumber(hi) + "], got " + v.dump());
         return r;
     }
 
@@ -403,8 +404,7 @@ SceneDescription parseSceneDescription(const std::string& jsonText, const fs::pa
 SceneDescription loadSceneDescription(const fs::path& sceneFile) {
     std::ifstream in(sceneFile, std::ios::binary);
     if (!in)
-        throw RuntimeError("meadow::runtime::loadScene: cannot read scene file " +
-                           sceneFile.string() + "; check the path");
+        throw RuntimeError("cannot read scene file " + sceneFile.string() + "; check the path");
     std::stringstream text;
     text << in.rdbuf();
     return parseSceneDescription(text.str(), sceneFile);

@@ -16,7 +16,7 @@ namespace {
 constexpr int kGltfModeTriangles = 4;  // glTF 2.0 primitive.mode TRIANGLES (the default)
 
 [[noreturn]] void fail(const std::filesystem::path& file, const std::string& what) {
-    throw RuntimeError("meadow::runtime::loadGltfTriangles: " + file.string() + ": " + what);
+    throw RuntimeError(file.string() + ": " + what);
 }
 
 glm::mat4 localFromNode(const tinygltf::Node& node) {

@@ -9,6 +9,7 @@
 
 #include "ground_maps.h"
 #include "meadow/runtime/error.h"
+#include "short_number.h"
 
 namespace meadow::runtime {
 namespace {
@@ -151,7 +152,7 @@ std::vector<SeededBlade> seedBlades(const SeedingInput& in) {
         std::string names;
         for (const TriangleMesh& m : *in.meshes) names += (names.empty() ? "" : ", ") + m.origin;
         throw RuntimeError(
-            "meadow::runtime::seedBlades: the grass meshes (" + names +
+            "the grass meshes (" + names +
             ") have no surface area to grow grass on; name a mesh with non-degenerate triangles");
     }
     std::vector<float> cumulativeWeights(in.archetypeWeights->size());
@@ -255,12 +256,11 @@ std::vector<SeededBlade> seedBlades(const SeedingInput& in) {
         if (blades.size() % m != 0) blades.resize(blades.size() / m * m);
     }
     if (blades.empty())
-        throw RuntimeError("meadow::runtime::seedBlades: the scene " +
-                           std::string(p.densityMap ? "(with its density map) " : "") +
-                           "grows no blades (area " + std::to_string(sampler.area_m2()) +
-                           " m^2, density " + std::to_string(p.density_per_m2) +
-                           " blades/m^2, patch size " + std::to_string(m) +
-                           "); raise blades.density_per_m2");
+        throw RuntimeError(
+            "the scene " + std::string(p.densityMap ? "(with its density map) " : "") +
+            "grows no blades (area " + shortNumber(sampler.area_m2()) + " m^2, density " +
+            shortNumber(p.density_per_m2) + " blades/m^2, patch size " + std::to_string(m) +
+            "); raise blades.density_per_m2");
     return blades;
 }
 

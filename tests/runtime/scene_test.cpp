@@ -41,21 +41,25 @@ TEST(SceneFile, BadFilesGiveOneClearLineNamingFileAndField) {
         std::string expected;
     };
     nlohmann::json wrongFormat = good, newVersion = good, typo = good, missingMesh = good,
-                   missingLibrary = good, badRange = good;
+                   missingLibrary = good, badRange = good, outOfRange = good;
     wrongFormat["format"] = "meadow.archetype-library";
     newVersion["version"] = 2;
     typo["blades"]["densty_per_m2"] = 5;
     missingMesh["grass"][0]["gltf"] = "nowhere.glb";
     missingLibrary["archetypes"] = {{"library", "no_library.json"}};
     badRange["blades"]["height_scale"] = {2.0, 1.0};
+    outOfRange["blades"]["density_per_m2"] = -5;
     for (const Case& c :
          {Case{wrongFormat, "format"}, Case{newVersion, "version 2 is not supported"},
           Case{typo, "blades.densty_per_m2: unknown field"}, Case{missingMesh, "nowhere.glb"},
-          Case{missingLibrary, "no_library.json"}, Case{badRange, "blades.height_scale"}}) {
+          Case{missingLibrary, "no_library.json"}, Case{badRange, "blades.height_scale"},
+          Case{outOfRange, "blades.density_per_m2: value -5 outside [0, 100000]"}}) {
         const std::string message = errorOf(dir, c.scene);
         EXPECT_NE(message.find(c.expected), std::string::npos) << "got: " << message;
         EXPECT_NE(message.find("scene.json"), std::string::npos) << "names the file: " << message;
         EXPECT_EQ(message.find('\n'), std::string::npos) << "one line: " << message;
+        // Written for the person who made the file, not the programmer: no C++ names.
+        EXPECT_EQ(message.find("meadow::"), std::string::npos) << "got: " << message;
     }
     std::ofstream(dir / "broken.json") << "{ not json";
     EXPECT_THROW(loadSceneDescription(dir / "broken.json"), RuntimeError);
