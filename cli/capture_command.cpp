@@ -115,7 +115,9 @@ void addCaptureCommand(CLI::App& app) {
                     "Folder for an overlay PNG per segmentation (mask, contour, cuts, blades)");
     cmd->add_option("--fuse", args->options.fusionFrames,
                     "Frames fused (per-pixel median) per segmentation, for a still tuft; 1 = each "
-                    "frame alone")
+                    "frame alone. Measured (median IoU, simulated presets): 1 frame 0.82, 2 0.81, "
+                    "3 0.85, 5 0.86; an even count has no middle reading (README, \"Fusing an "
+                    "even count\")")
         ->capture_default_str()
         ->check(CLI::Range(1, 64));
     cmd->add_option("--max-frames", args->options.maxFrames,
