@@ -1,0 +1,35 @@
+#pragma once
+// What the accuracy / trade-off bench measures: presets, noise scales, distances, seeds and
+// repetitions (accuracy_tradeoff_bench.cpp), shared by its tables.
+#include <string>
+#include <vector>
+
+namespace meadow::bench {
+
+inline constexpr double kMatchIou = 0.5;  // a found blade matches a true one at pixel IoU >= this
+inline const std::vector<std::string> kBladeTypePresets{"slim-grass", "quadratic-leaf",
+                                                        "shrub-leaf", "bamboo-leaf", "sharp-tip"};
+inline const std::vector<float> kNoiseScales{0.f, 1.f, 2.f, 4.f};
+inline constexpr float kNominalNoise = 1.f;
+inline const std::vector<float> kModelingDistances_m{0.6f, 0.8f, 1.0f};
+inline constexpr double kFrameRate_hz = 30.0;  // as `meadow synth` records
+inline constexpr int kMaxFusionFrames = 5;     // frames rendered per trade-off scene
+inline constexpr float kMillimetresPerMetre = 1000.f;
+inline constexpr double kPercent = 100.0;
+
+struct Plan {
+    std::vector<std::string> segmentationPresets;  // every preset of `meadow synth --list`
+    std::vector<std::string> bladeTypes = kBladeTypePresets;
+    std::vector<float> noises = kNoiseScales;
+    std::vector<float> distances_m = kModelingDistances_m;
+    int segmentationSeeds = 5;
+    int modelingSeeds = 2;
+    int tradeoffSeeds = 2;
+    int repetitions = 5;
+    bool verbose = false;  // one line per fitted blade in the modeling accuracy run
+};
+
+// The full plan, or with `quick` fewer presets, seeds and repetitions (a smoke run).
+Plan makePlan(bool quick);
+
+}  // namespace meadow::bench

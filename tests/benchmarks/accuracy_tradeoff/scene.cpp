@@ -1,0 +1,150 @@
+// Scenes of the accuracy / trade-off bench (scene.h).
+#include "accuracy_tradeoff/scene.h"
+
+#include <algorithm>
+#include <opencv2/core.hpp>
+#include <span>
+#include <stdexcept>
+
+#include "meadow/capture/simulated_sensor.h"
+#include "meadow/modeling/error.h"
+
+namespace meadow::bench {
+namespace {
+
+using capture::BladeContour;
+using capture::BladeFlag;
+using capture::DepthFrame;
+using capture::Segmentation;
+using modeling::BladeFit;
+using modeling::CaptureOptions;
+using modeling::SyntheticTuft;
+
+// SplitMix64 mix of (seed, frame) into a per-frame sensor seed, the same construction as
+// modeling/src/synthesize.cpp, so frames of a fused group carry independent noise.
+std::uint64_t frameSeed(std::uint64_t seed, std::uint64_t frame) {
+    std::uint64_t z = seed + 0x9e3779b97f4a7c15ull * (frame + 1);
+    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
+    z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
+    return z ^ (z >> 31);
+}
+
+// Flags that make capture skip a blade (capture_pipeline.cpp, disqualifies()).
+bool disqualifies(BladeFlag flag) { return flag != BladeFlag::Asymmetric; }
+
+}  // namespace
+
+Scene renderScene(const std::string& presetName, float noise, std::uint64_t seed, float distance_m,
+                  int frameCount) {
+    const modeling::SynthPreset* preset = modeling::findSynthPreset(presetName);
+    if (!preset) throw std::invalid_argument("unknown preset " + presetName);
+    modeling::TuftParams params;
+    params.seed = seed;
+    params.distance_m = distance_m;
+    modeling::TuftSpec spec = modeling::buildPresetSpec(*preset, params);
+    spec.wind.frameRate_hz = static_cast<float>(kFrameRate_hz);
+    capture::NoiseModel model;
+    model.scale = noise * preset->noiseMultiplier;
+    const capture::SimulatedSensor sensor(spec.camera.intrinsics, model);
+    Scene scene{presetName, noise, seed, spec.camera.distance_m, {}, {}, {}};
+    for (int i = 0; i < frameCount; ++i) {
+        SyntheticTuft tuft = modeling::buildTuft(spec, i);
+        const capture::SimulatedFrame sim =
+            sensor.render(tuft.meshes(), frameSeed(seed, static_cast<std::uint64_t>(i)));
+        DepthFrame frame;
+        frame.depth_mm = sim.depth_mm;
+        frame.intrinsics = spec.camera.intrinsics;
+        frame.index = i;
+        frame.timestamp_s = i / kFrameRate_hz;
+        scene.frames.push_back(std::move(frame));
+        if (i == 0) {
+            scene.labels = sim.labels;
+            scene.tuft = std::move(tuft);
+        }
+    }
+    return scene;
+}
+
+std::vector<Scene> tradeoffScenes(const Plan& plan) {
+    std::vector<Scene> scenes;
+    for (const std::string& preset : plan.bladeTypes)
+        for (int seed = 1; seed <= plan.tradeoffSeeds; ++seed)
+            scenes.push_back(renderScene(preset, kNominalNoise, static_cast<std::uint64_t>(seed),
+                                         0.f, kMaxFusionFrames));
+    return scenes;
+}
+
+BladeMatch matchBlades(const cv::Mat1w& labels, const std::vector<BladeContour>& blades) {
+    BladeMatch m;
+    double maxLabel = 0;
+    cv::minMaxLoc(labels, nullptr, &maxLabel);
+    std::vector<cv::Mat1b> truthMasks;
+    for (int id = 1; id <= static_cast<int>(maxLabel); ++id) {
+        cv::Mat1b mask = labels == id;
+        if (cv::countNonZero(mask) == 0) continue;
+        m.trueIds.push_back(id);
+        truthMasks.push_back(std::move(mask));
+    }
+    struct Pair {
+        double iou;
+        std::size_t t, f;
+    };
+    std::vector<Pair> pairs;
+    std::vector<cv::Mat1b> found;
+    for (const auto& b : blades)
+        found.push_back(truthMasks.empty() ? b.mask : b.frameMask(truthMasks[0].size()));
+    for (std::size_t t = 0; t < truthMasks.size(); ++t)
+        for (std::size_t f = 0; f < blades.size(); ++f) {
+            const double inter = cv::countNonZero(truthMasks[t] & found[f]);
+            if (inter == 0) continue;
+            pairs.push_back({inter / cv::countNonZero(truthMasks[t] | found[f]), t, f});
+        }
+    std::sort(pairs.begin(), pairs.end(),
+              [](const Pair& a, const Pair& b) { return a.iou > b.iou; });
+    m.trueBestIou.assign(truthMasks.size(), 0.0);
+    m.foundToTrueId.assign(blades.size(), 0);
+    std::vector<char> tUsed(truthMasks.size(), 0), fUsed(blades.size(), 0);
+    for (const Pair& p : pairs) {
+        if (tUsed[p.t] || fUsed[p.f]) continue;
+        tUsed[p.t] = fUsed[p.f] = 1;
+        m.trueBestIou[p.t] = p.iou;
+        if (p.iou >= kMatchIou) {
+            ++m.matched;
+            m.foundToTrueId[p.f] = m.trueIds[p.t];
+        }
+    }
+    return m;
+}
+
+Segmentation segmentScene(const capture::Segmenter& segmenter, const Scene& scene,
+                          int fusionFrames) {
+    if (fusionFrames <= 1) return segmenter.segment(scene.frames.front());
+    return segmenter.segment(
+        std::span<const DepthFrame>(scene.frames.data(), static_cast<std::size_t>(fusionFrames)));
+}
+
+TuftCapture captureTuft(const capture::Segmenter& segmenter, const Scene& scene,
+                        const CaptureOptions& options) {
+    TuftCapture out;
+    out.segmentation = segmentScene(segmenter, scene, options.fusionFrames);
+    const DepthFrame& depthFrame = scene.frames.front();  // capture fits on the group's first
+    for (std::size_t index = 0; index < out.segmentation.blades.size(); ++index) {
+        const BladeContour& blade = out.segmentation.blades[index];
+        const bool flagged = std::any_of(blade.flags.begin(), blade.flags.end(), disqualifies);
+        if (flagged && !options.keepFlagged) {
+            out.fits.emplace_back();
+            continue;
+        }
+        try {
+            // Rooted at the cluster's base point, as `meadow capture` fits.
+            out.fits.emplace_back(
+                modeling::fitSegmentedBlade(out.segmentation, index, depthFrame, options.fit));
+        } catch (const modeling::ModelingError&) {
+            out.fits.emplace_back();
+            ++out.fitFailures;
+        }
+    }
+    return out;
+}
+
+}  // namespace meadow::bench

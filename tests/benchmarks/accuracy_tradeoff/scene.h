@@ -1,0 +1,58 @@
+#pragma once
+// Scenes of the accuracy / trade-off bench: a preset rendered in memory through the simulated
+// sensor as `meadow synth` renders it, its segmentation, found blades matched to true ones by
+// pixel IoU, and the capture of a tuft (segmentation + a fit of every trustworthy blade).
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "accuracy_tradeoff/plan.h"
+#include "meadow/capture/segmenter.h"
+#include "meadow/modeling/blade_fit.h"
+#include "meadow/modeling/capture_pipeline.h"
+#include "meadow/modeling/synthetic_tuft.h"
+
+namespace meadow::bench {
+
+struct Scene {
+    std::string preset;
+    float noise = 1.f;
+    std::uint64_t seed = 1;
+    float distance_m = 0.f;
+    std::vector<capture::DepthFrame> frames;
+    cv::Mat1w labels;              // truth of frame 0: blade id per pixel, 0 = none
+    modeling::SyntheticTuft tuft;  // frame 0
+};
+
+// `frameCount` frames of the preset (distance 0: the preset's own), each with its own noise.
+Scene renderScene(const std::string& presetName, float noise, std::uint64_t seed, float distance_m,
+                  int frameCount);
+// The blade-type presets at nominal noise, kMaxFusionFrames frames each: the trade-offs' scenes.
+std::vector<Scene> tradeoffScenes(const Plan& plan);
+
+struct BladeMatch {
+    std::vector<int> trueIds;         // labels visible in frame 0
+    std::vector<double> trueBestIou;  // per true id: IoU of its one-to-one partner (0 if none)
+    std::vector<int> foundToTrueId;   // per found blade: matched true id (IoU >= kMatchIou), or 0
+    int matched = 0;
+};
+// Greedy one-to-one matching by IoU over every (true, found) pair, highest IoU first (the same
+// rule as tests/modeling/segmentation_accuracy_test.cpp).
+BladeMatch matchBlades(const cv::Mat1w& labels, const std::vector<capture::BladeContour>& blades);
+
+// The scene's first frame, or its first `fusionFrames` fused.
+capture::Segmentation segmentScene(const capture::Segmenter& segmenter, const Scene& scene,
+                                   int fusionFrames);
+
+// Mirrors modeling::captureArchetypes (capture_pipeline.cpp) for one fused group, keeping what
+// the library drops (the blade masks and camera-space spines) to compare with the truth.
+struct TuftCapture {
+    capture::Segmentation segmentation;
+    std::vector<std::optional<modeling::BladeFit>> fits;  // per found blade; empty when skipped
+    int fitFailures = 0;
+};
+TuftCapture captureTuft(const capture::Segmenter& segmenter, const Scene& scene,
+                        const modeling::CaptureOptions& options);
+
+}  // namespace meadow::bench
