@@ -19,6 +19,13 @@ constexpr int kNewtonStepsPerIteration = 3;
 // Weight of the plain least-squares term in the control point update (stepControlPoints).
 constexpr double kRegularisation = 1e-3;
 
+// Point j's weight in every sum of the fit (empty weights: all 1). Anything not above 0, NaN
+// included, leaves the point out.
+double weightOf(const std::vector<float>& weights, std::size_t j) {
+    const double w = weights.empty() ? 1.0 : weights[j];
+    return w > 0.0 ? w : 0.0;
+}
+
 }  // namespace
 
 glm::vec3 leastSquaresMiddleControlPoint(const std::vector<glm::vec3>& points,
@@ -27,8 +34,8 @@ glm::vec3 leastSquaresMiddleControlPoint(const std::vector<glm::vec3>& points,
     glm::dvec3 numerator{0.0};
     double denominator = 0.0;
     for (std::size_t j = 0; j < points.size(); ++j) {
-        const double w = weights.empty() ? 1.0 : weights[j];
-        if (!(w > 0.0)) continue;
+        const double w = weightOf(weights, j);
+        if (w == 0.0) continue;
         const double tj = t[j], s = 1.0 - tj;
         const double b = 2.0 * s * tj;
         numerator +=
@@ -76,8 +83,8 @@ bool stepControlPoints(const std::vector<glm::vec3>& points, const std::vector<f
         const bool first = j == 0, last = j + 1 == n;
         // A pinned end's point is the control point itself: it has no residual.
         if ((first && !fitRoot) || (last && !fitTip)) continue;
-        const double weight = weights.empty() ? 1.0 : weights[j];
-        if (weight <= 0.0) continue;
+        const double weight = weightOf(weights, j);
+        if (weight == 0.0) continue;
         const double tj = t[j];
         const double bernstein[3] = {(1.0 - tj) * (1.0 - tj), 2.0 * (1.0 - tj) * tj, tj * tj};
         const glm::dmat3 P =
@@ -148,8 +155,8 @@ SpineFit fitQuadraticBezier(const std::vector<glm::vec3>& points, int iterations
     }
     double sum2 = 0.0, weightSum = 0.0;
     for (std::size_t j = 0; j < n; ++j) {
-        const double w = weights.empty() ? 1.0 : weights[j];
-        if (w <= 0.0) continue;
+        const double w = weightOf(weights, j);
+        if (w == 0.0) continue;
         const float d = glm::distance(B.at(fit.t[j]), points[j]);
         sum2 += w * d * d;
         weightSum += w;
