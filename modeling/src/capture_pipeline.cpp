@@ -8,11 +8,8 @@
 
 namespace meadow::modeling {
 
-namespace {
-
-// Flags after which a blade's contour does not describe one whole blade: the fit would model
-// something that is not there. Asymmetry is not among them: the fit measures and records it.
-bool disqualifies(capture::BladeFlag flag) {
+// The fit would model something that is not there (capture_pipeline.h).
+bool disqualifiesFromModelling(capture::BladeFlag flag) {
     switch (flag) {
         case capture::BladeFlag::Overlapping:
         case capture::BladeFlag::CurlsSideways:
@@ -25,6 +22,8 @@ bool disqualifies(capture::BladeFlag flag) {
     }
     return true;
 }
+
+namespace {
 
 std::string joined(const std::vector<std::string>& lines) {
     std::string out;
@@ -74,7 +73,8 @@ CaptureResult captureArchetypes(capture::DepthSource& source, const std::string&
             ++summary.bladesFound;
             const std::string where =
                 "frame " + std::to_string(frameIndex) + " blade " + std::to_string(blade.id);
-            const bool flagged = std::any_of(blade.flags.begin(), blade.flags.end(), disqualifies);
+            const bool flagged =
+                std::any_of(blade.flags.begin(), blade.flags.end(), disqualifiesFromModelling);
             if (flagged && !options.keepFlagged) {
                 summary.notes.push_back(where + " skipped: " + joined(blade.reasons));
                 continue;

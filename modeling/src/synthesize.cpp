@@ -31,15 +31,6 @@ constexpr float kMaxNoiseScale = 10.f;
 // Label images are mostly 0: the slowest, smallest PNG setting costs little here.
 constexpr int kLabelPngCompression = 9;
 
-// SplitMix64 (Steele, Lea & Flood 2014): a well-mixed per-frame sensor seed from (seed, frame),
-// so neighbouring seeds and frames share no noise.
-std::uint64_t mixSeed(std::uint64_t seed, std::uint64_t frame) {
-    std::uint64_t z = seed + 0x9e3779b97f4a7c15ull * (frame + 1);
-    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
-    z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
-    return z ^ (z >> 31);
-}
-
 std::string frameName(int index) {
     char name[32];
     std::snprintf(name, sizeof name, "%06d.png", index);
@@ -311,6 +302,13 @@ SynthTruth readSynthTruth(const fs::path& file) {
     return parseSynthTruth(text.str(), file.string());
 }
 
+std::uint64_t synthFrameSeed(std::uint64_t seed, std::uint64_t frame) {
+    std::uint64_t z = seed + 0x9e3779b97f4a7c15ull * (frame + 1);
+    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
+    z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
+    return z ^ (z >> 31);
+}
+
 SynthTruth synthesize(const SynthOptions& options,
                       const std::function<void(int done, int total)>& progress) {
     const SynthPreset* preset = findSynthPreset(options.preset);
@@ -358,8 +356,8 @@ SynthTruth synthesize(const SynthOptions& options,
     frameSpec.wind.frameRate_hz = static_cast<float>(kFrameRate_hz);
     for (int i = 0; i < options.frames; ++i) {
         const SyntheticTuft tuft = buildTuft(frameSpec, i);
-        const capture::SimulatedFrame frame =
-            sensor.render(tuft.meshes(), mixSeed(options.seed, i));
+        const capture::SimulatedFrame frame = sensor.render(
+            tuft.meshes(), synthFrameSeed(options.seed, static_cast<std::uint64_t>(i)));
         writer.write(frame.depth_mm);
         SynthTruthFrame frameTruth = truthOfFrame(tuft, i);
         writeLabels(truthFolder / frameTruth.labels, frame.labels);

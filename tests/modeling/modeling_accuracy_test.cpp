@@ -44,6 +44,7 @@
 #include "meadow/capture/segmenter.h"
 #include "meadow/capture/simulated_sensor.h"
 #include "meadow/modeling/blade_fit.h"
+#include "meadow/modeling/capture_pipeline.h"
 #include "meadow/modeling/error.h"
 #include "meadow/modeling/synthetic_tuft.h"
 
@@ -134,7 +135,8 @@ Score run(const std::string& presetName, float distance_m, std::uint64_t seed) {
     score.truth = static_cast<int>(tuft.blades.size());
     for (std::size_t index = 0; index < seg.blades.size(); ++index) {
         const capture::BladeContour& blade = seg.blades[index];
-        if (!blade.flags.empty()) continue;
+        if (std::any_of(blade.flags.begin(), blade.flags.end(), disqualifiesFromModelling))
+            continue;
         // Majority true label under the mask.
         std::map<int, int> votes;
         for (int v = 0; v < blade.mask.rows; ++v)

@@ -8,29 +8,17 @@
 
 #include "meadow/capture/simulated_sensor.h"
 #include "meadow/modeling/error.h"
+#include "meadow/modeling/synthesize.h"
 
 namespace meadow::bench {
 namespace {
 
 using capture::BladeContour;
-using capture::BladeFlag;
 using capture::DepthFrame;
 using capture::Segmentation;
 using modeling::BladeFit;
 using modeling::CaptureOptions;
 using modeling::SyntheticTuft;
-
-// SplitMix64 mix of (seed, frame) into a per-frame sensor seed, the same construction as
-// modeling/src/synthesize.cpp, so frames of a fused group carry independent noise.
-std::uint64_t frameSeed(std::uint64_t seed, std::uint64_t frame) {
-    std::uint64_t z = seed + 0x9e3779b97f4a7c15ull * (frame + 1);
-    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
-    z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
-    return z ^ (z >> 31);
-}
-
-// Flags that make capture skip a blade (capture_pipeline.cpp, disqualifies()).
-bool disqualifies(BladeFlag flag) { return flag != BladeFlag::Asymmetric; }
 
 }  // namespace
 
@@ -49,8 +37,8 @@ Scene renderScene(const std::string& presetName, float noise, std::uint64_t seed
     Scene scene{presetName, noise, seed, spec.camera.distance_m, {}, {}, {}};
     for (int i = 0; i < frameCount; ++i) {
         SyntheticTuft tuft = modeling::buildTuft(spec, i);
-        const capture::SimulatedFrame sim =
-            sensor.render(tuft.meshes(), frameSeed(seed, static_cast<std::uint64_t>(i)));
+        const capture::SimulatedFrame sim = sensor.render(
+            tuft.meshes(), modeling::synthFrameSeed(seed, static_cast<std::uint64_t>(i)));
         DepthFrame frame;
         frame.depth_mm = sim.depth_mm;
         frame.intrinsics = spec.camera.intrinsics;
@@ -130,7 +118,8 @@ TuftCapture captureTuft(const capture::Segmenter& segmenter, const Scene& scene,
     const DepthFrame& depthFrame = scene.frames.front();  // capture fits on the group's first
     for (std::size_t index = 0; index < out.segmentation.blades.size(); ++index) {
         const BladeContour& blade = out.segmentation.blades[index];
-        const bool flagged = std::any_of(blade.flags.begin(), blade.flags.end(), disqualifies);
+        const bool flagged = std::any_of(blade.flags.begin(), blade.flags.end(),
+                                         modeling::disqualifiesFromModelling);
         if (flagged && !options.keepFlagged) {
             out.fits.emplace_back();
             continue;

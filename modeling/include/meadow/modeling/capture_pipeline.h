@@ -37,6 +37,11 @@ struct CaptureResult {
     CaptureSummary summary;
 };
 
+// Whether a segmenter flag keeps captureArchetypes from modelling the blade (unless
+// CaptureOptions::keepFlagged): after it the contour does not describe one whole blade.
+// Asymmetry does not: the fit measures and records it.
+bool disqualifiesFromModelling(capture::BladeFlag flag);
+
 using CaptureProgress = std::function<void(int framesDone, int framesTotal)>;
 
 // Throws ModelingError when no blade could be modelled (the message carries the reasons), and

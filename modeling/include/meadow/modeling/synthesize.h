@@ -83,6 +83,11 @@ struct SynthOptions {
 
 inline constexpr int kMaxSynthFrames = 10000;
 
+// The simulated sensor's noise seed for frame `frame` of a synth run seeded `seed`: SplitMix64
+// (Steele, Lea & Flood 2014), so neighbouring seeds and frames share no noise. Whoever renders a
+// preset in memory uses it to get the frames `meadow synth` writes.
+[[nodiscard]] std::uint64_t synthFrameSeed(std::uint64_t seed, std::uint64_t frame);
+
 // Renders and writes everything; returns the truth it wrote. `progress(done, total)` is called
 // after each frame. Throws ModelingError on an unknown preset (naming the known ones) and
 // capture::CaptureError / meadow::Error when the disk refuses; std::invalid_argument on
