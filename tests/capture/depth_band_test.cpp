@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <opencv2/core.hpp>
+#include <opencv2/imgproc.hpp>
 #include <string>
 
 #include "../../capture/src/segmentation/stages.h"
@@ -80,6 +81,34 @@ TEST(DepthBand, ATuftClearOfTheWallIsFoundAtOnce) {
     ASSERT_TRUE(band.found);
     EXPECT_FALSE(mentions(report, "looking again without"));
     EXPECT_TRUE(band.scenery.empty());
+    EXPECT_LT(band.far_m, kWallNear_mm / 1000.f);
+}
+
+// A tuft seen from close up: blades fanning from one base point over three quarters of the
+// columns (between an eighth and seven eighths of the width), in front of the wall's stripes.
+// It spans more columns than kSceneryColumnCoverage, but it does not reach across the frame as
+// the wall does, so it is the tuft (slim grass at 0.6 m was skipped as scenery this way).
+TEST(DepthBand, ATuftSeenFromCloseUpIsNotTakenForScenery) {
+    cv::Mat1w depth = wallBehindTuft();
+    depth(kTuft).setTo(0);
+    constexpr std::uint16_t kCloseTuft_mm = 600;
+    const cv::Point base(kWidth / 2, kHeight - 10);
+    for (int top = kWidth / 8; top <= kWidth * 7 / 8; top += kWidth / 16)
+        cv::line(depth, base, {top, kWallRows + 10}, cv::Scalar(kCloseTuft_mm + top / 8), 3);
+    float spanned = 0.f;
+    {
+        cv::Mat1b tuftColumns;
+        cv::reduce(depth.rowRange(kWallRows, kHeight) > 0, tuftColumns, 0, cv::REDUCE_MAX);
+        spanned = static_cast<float>(cv::countNonZero(tuftColumns)) / kWidth;
+    }
+    ASSERT_GT(spanned, 0.7f) << "the drawn tuft must span more columns than the scenery test";
+    StageReport report;
+    const segmentation::DepthBand band = segmentation::automaticDepthBand(
+        depth, depth > 0, intrinsics(), SegmenterParams{}, /*groundRemoved=*/true, report);
+    ASSERT_TRUE(band.found) << report.notes.back();
+    EXPECT_FALSE(mentions(report, "skipped the mode"));
+    EXPECT_LE(band.near_m, kCloseTuft_mm / 1000.f);
+    EXPECT_GE(band.far_m, (kCloseTuft_mm + kWidth * 7 / 64) / 1000.f);
     EXPECT_LT(band.far_m, kWallNear_mm / 1000.f);
 }
 

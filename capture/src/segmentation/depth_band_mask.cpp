@@ -16,9 +16,13 @@ namespace {
 // disparity quantisation leaves in the histogram of a structured-light sensor.
 constexpr int kSmoothHalfWidth_bins = 2;
 constexpr float kMaxHistogramDepth_m = 12.0f;
-// A depth mode present in more than this share of the image columns is scenery, not a tuft
-// (a tuft of 12 blades fills well under half the width at the presets' distances).
+// A depth mode present in more than this share of the image columns, out to both side borders,
+// is scenery seen edge-on (ground, a wall), not a tuft. Coverage alone is not enough: a tuft
+// seen from close up spans it too (slim grass at 0.6 m: 62-79 % of the columns, between 10 %
+// and 90 % of the width), while the strips of ground and wall reach across the frame.
 constexpr float kSceneryColumnCoverage = 0.6f;
+// How near each side border a mode's pixels must come to reach across the frame.
+constexpr float kSceneryBorderMargin = 0.05f;
 // Valleys above this share of the mode's peak are crossed (between blades of one tuft).
 constexpr double kBandFloorFraction = 0.25;
 // Points sampled per mode for the flatness test: a 3x3 covariance needs no more.
@@ -79,9 +83,10 @@ struct DepthHistogram {
         return std::min(static_cast<int>(count.size()) - 1,
                         static_cast<int>(static_cast<float>(d) / bin_mm));
     }
-    // Share of the image columns that the bins lo..hi not left out reach.
-    [[nodiscard]] float columnCoverage(int lo, int hi,
-                                       const std::vector<std::uint8_t>& leftOut) const {
+    // Whether the bins lo..hi not left out are scenery seen edge-on (kSceneryColumnCoverage);
+    // coverage gets the share of the image columns they reach.
+    [[nodiscard]] bool scenery(int lo, int hi, const std::vector<std::uint8_t>& leftOut,
+                               float& coverage) const {
         std::vector<std::uint8_t> any(columns, 0);
         for (int b = lo; b <= hi; ++b) {
             const auto i = static_cast<std::size_t>(b);
@@ -89,8 +94,17 @@ struct DepthHistogram {
             const std::uint8_t* row = &columnHit[i * columns];
             for (std::size_t x = 0; x < columns; ++x) any[x] |= row[x];
         }
-        return static_cast<float>(std::count(any.begin(), any.end(), 1)) /
-               static_cast<float>(columns);
+        return spansTheFrame(any.data(), coverage);
+    }
+    // Over one row of column hits: the share of the columns hit, and whether that share is over
+    // kSceneryColumnCoverage with hits within kSceneryBorderMargin of both side borders.
+    [[nodiscard]] bool spansTheFrame(const std::uint8_t* hit, float& coverage) const {
+        const auto n = static_cast<std::ptrdiff_t>(columns);
+        coverage = static_cast<float>(std::count(hit, hit + n, 1)) / static_cast<float>(n);
+        const auto margin = std::max<std::ptrdiff_t>(
+            1, static_cast<std::ptrdiff_t>(kSceneryBorderMargin * static_cast<float>(n)));
+        return coverage > kSceneryColumnCoverage && std::find(hit, hit + margin, 1) != hit + margin &&
+               std::find(hit + n - margin, hit + n, 1) != hit + n;
     }
 };
 
@@ -115,16 +129,14 @@ DepthHistogram histogramOf(const cv::Mat1w& depth_mm, const cv::Mat1b& mask, flo
     return h;
 }
 
-// Bins whose pixels alone reach across more than kSceneryColumnCoverage of the columns: a wall
-// or the ground seen at an angle, where each depth is a stripe across the frame.
+// Bins whose pixels alone reach across the frame (kSceneryColumnCoverage): a wall or the ground
+// seen at an angle, where each depth is a stripe across the frame.
 std::vector<std::uint8_t> sceneryBins(const DepthHistogram& h) {
     std::vector<std::uint8_t> scenery(h.count.size(), 0);
     for (std::size_t b = 0; b < h.count.size(); ++b) {
         if (h.count[b] == 0.0) continue;
-        const auto first = h.columnHit.begin() + static_cast<std::ptrdiff_t>(b * h.columns);
-        const auto hit = std::count(first, first + static_cast<std::ptrdiff_t>(h.columns), 1);
-        scenery[b] =
-            static_cast<float>(hit) > kSceneryColumnCoverage * static_cast<float>(h.columns);
+        float coverage = 0.f;
+        scenery[b] = h.spansTheFrame(&h.columnHit[b * h.columns], coverage);
     }
     return scenery;
 }
@@ -173,15 +185,15 @@ DepthBand nearestMode(const DepthHistogram& h, const std::vector<std::uint8_t>& 
             peak = hi;  // the whole mode is too small; continue beyond it
             continue;
         }
-        // A mode spread over (nearly) every image column is scenery seen edge-on: the strip of
-        // ground the sensor still reads before grazing angles drop it, a wall, a table edge.
-        const float coverage = h.columnCoverage(lo, hi, leftOut);
-        if (coverage > kSceneryColumnCoverage) {
+        // A mode spread across the frame is scenery seen edge-on: the strip of ground the sensor
+        // still reads before grazing angles drop it, a wall, a table edge.
+        float coverage = 0.f;
+        if (h.scenery(lo, hi, leftOut, coverage)) {
             report.notes.push_back(
                 "skipped the mode at " +
                 metres((static_cast<float>(peak) + 0.5f) * params.histogramBin_m) + ": it spans " +
                 std::to_string(static_cast<int>(100 * coverage)) +
-                " % of the image columns (ground or wall, not a tuft)");
+                " % of the image columns, out to both sides (ground or wall, not a tuft)");
             peak = hi;
             continue;
         }
@@ -248,7 +260,7 @@ DepthBand automaticDepthBand(const cv::Mat1w& depth_mm, const cv::Mat1b& mask,
         "looking again without " + std::to_string(sceneryCount) + " depth bin(s) of " +
         std::to_string(static_cast<long long>(sceneryPixels)) + " px that each span over " +
         std::to_string(static_cast<int>(100 * kSceneryColumnCoverage)) +
-        " % of the image columns (a wall or the ground seen at an angle)");
+        " % of the image columns out to both sides (a wall or the ground seen at an angle)");
     band = nearestMode(h, scenery, depth_mm, mask, intrinsics, params, report);
     if (!band.found) return band;
     band.scenery = cv::Mat1b::zeros(depth_mm.size());
