@@ -112,5 +112,25 @@ TEST(DepthBand, ATuftSeenFromCloseUpIsNotTakenForScenery) {
     EXPECT_LT(band.far_m, kWallNear_mm / 1000.f);
 }
 
+// Scenery that ends inside the view (the edge of a ground disc beyond the tuft, a low wall seen
+// at an angle) does not reach the side borders, but it fills the rows it covers: still scenery,
+// and the tuft behind it is the band (such a ground disc passed for a tuft with --plane none).
+// Upright, so the flat-and-level test does not skip it first.
+TEST(DepthBand, SceneryEndingInsideTheViewIsStillSkipped) {
+    cv::Mat1w depth(kHeight, kWidth, std::uint16_t{0});
+    constexpr std::uint16_t kStrip_mm = 700;
+    for (int y = 200; y < 216; ++y)
+        for (int x = kWidth / 10; x < kWidth * 9 / 10; ++x) depth(y, x) = kStrip_mm + x / 8;
+    for (int x = 0; x < kTuft.width; ++x)
+        depth(cv::Rect(kTuft.x, 90, kTuft.width, 80)).col(x).setTo(kTuftNear_mm + x);
+    StageReport report;
+    const segmentation::DepthBand band = segmentation::automaticDepthBand(
+        depth, depth > 0, intrinsics(), SegmenterParams{}, /*groundRemoved=*/false, report);
+    ASSERT_TRUE(band.found) << report.notes.back();
+    EXPECT_TRUE(mentions(report, "across the frame")) << "the strip is skipped as scenery";
+    EXPECT_GT(band.near_m, (kStrip_mm + kWidth / 8) / 1000.f);
+    EXPECT_LE(band.near_m, kTuftNear_mm / 1000.f);
+}
+
 }  // namespace
 }  // namespace meadow::capture

@@ -15,11 +15,11 @@ using meadow::test::runMeadow;
 namespace {
 
 // A recording of frames that all read "no data": a valid recording with nothing in it.
-fs::path writeAllZeroRecording(const fs::path& dir) {
+fs::path writeAllZeroRecording(const fs::path& dir, int frames = 2) {
     meadow::capture::RecordingInfo info;
     info.sensor = "test";
     meadow::capture::RecordingWriter writer(dir, info);
-    for (int i = 0; i < 2; ++i) writer.write(cv::Mat1w::zeros(480, 640));
+    for (int i = 0; i < frames; ++i) writer.write(cv::Mat1w::zeros(480, 640));
     writer.finish();
     return dir;
 }
@@ -101,6 +101,38 @@ TEST(CaptureCli, AllZeroFramesSayNoBladesAndKeepThePreviousLibrary) {
     std::ifstream in(dir / "lib.json");
     std::string kept((std::istreambuf_iterator<char>(in)), {});
     EXPECT_EQ(kept, "previous library") << "a failed capture must not touch an existing library";
+}
+
+// A long recording with nothing to model: the message counts instead of listing every frame
+// (it once joined every note, a line that grew with the recording).
+TEST(CaptureCli, ManyEmptyFramesGiveOneBoundedLine) {
+    const fs::path dir = freshTempDir("capture_many_empty");
+    const fs::path rec = writeAllZeroRecording(dir / "rec", 30);
+    const auto r =
+        runMeadow("capture " + rec.string() + " --fuse 1 --out " + (dir / "lib.json").string());
+    EXPECT_EQ(r.exitCode, 2) << r.output;
+    EXPECT_EQ(countLines(r.output), 1) << r.output;
+    EXPECT_LT(r.output.size(), 1000u) << r.output;
+    EXPECT_NE(r.output.find("0 found in 30 segmentation(s), 30 segmentation(s) without blades"),
+              std::string::npos)
+        << r.output;
+    EXPECT_NE(r.output.find("and 27 more"), std::string::npos) << r.output;
+}
+
+// Blades below what the sensor resolves (the thin preset: 1.2-1.8 px wide) are all skipped as
+// too thin; the message says so and what to do about it.
+TEST(CaptureCli, BladesTooThinToModelSayHowToGetThem) {
+    const fs::path dir = freshTempDir("capture_too_thin");
+    const fs::path rec = synthesised(dir, "--preset thin --frames 1");
+    const auto r =
+        runMeadow("capture " + rec.string() + " --fuse 1 --out " + (dir / "lib.json").string());
+    EXPECT_EQ(r.exitCode, 2) << r.output;
+    EXPECT_EQ(countLines(r.output), 1) << r.output;
+    EXPECT_NE(r.output.find("skipped as"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("too-thin ("), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("bring the camera closer"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("--keep-flagged"), std::string::npos) << r.output;
+    EXPECT_FALSE(fs::exists(dir / "lib.json"));
 }
 
 TEST(CaptureCli, CorruptFrameNamesTheFile) {

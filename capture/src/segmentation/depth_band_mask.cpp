@@ -16,13 +16,21 @@ namespace {
 // disparity quantisation leaves in the histogram of a structured-light sensor.
 constexpr int kSmoothHalfWidth_bins = 2;
 constexpr float kMaxHistogramDepth_m = 12.0f;
-// A depth mode present in more than this share of the image columns, out to both side borders,
-// is scenery seen edge-on (ground, a wall), not a tuft. Coverage alone is not enough: a tuft
-// seen from close up spans it too (slim grass at 0.6 m: 62-79 % of the columns, between 10 %
-// and 90 % of the width), while the strips of ground and wall reach across the frame.
+// A depth mode present in more than this share of the image columns is scenery seen edge-on
+// (ground, a wall), not a tuft, when it also reaches across the frame or lies in stripes across
+// it. Coverage alone is not enough: a tuft seen from close up spans as many columns (slim grass
+// at 0.6 m: 62-79 %), but it stays off the side borders and fills a few percent of each row,
+// while ground and wall stripes reach both borders or, where the ground ends inside the view
+// (a ground disc seen beyond the tuft), fill a third of the rows they lie in and more.
 constexpr float kSceneryColumnCoverage = 0.6f;
 // How near each side border a mode's pixels must come to reach across the frame.
 constexpr float kSceneryBorderMargin = 0.05f;
+// A stripe: a row the mode fills across this share of the columns; the mode is scenery when this
+// share of its pixels lie in stripes. Measured: tufts 0 % on every blade-type preset at 0.5-1.0 m
+// (their rows hold a few blades), the far edge of the ground disc beyond slim grass 49 % (the
+// blades at its depths are in the mode too).
+constexpr float kStripeRowFill = 0.3f;
+constexpr double kSceneryStripeShare = 0.1;
 // Valleys above this share of the mode's peak are crossed (between blades of one tuft).
 constexpr double kBandFloorFraction = 0.25;
 // Points sampled per mode for the flatness test: a 3x3 covariance needs no more.
@@ -83,10 +91,9 @@ struct DepthHistogram {
         return std::min(static_cast<int>(count.size()) - 1,
                         static_cast<int>(static_cast<float>(d) / bin_mm));
     }
-    // Whether the bins lo..hi not left out are scenery seen edge-on (kSceneryColumnCoverage);
-    // coverage gets the share of the image columns they reach.
-    [[nodiscard]] bool scenery(int lo, int hi, const std::vector<std::uint8_t>& leftOut,
-                               float& coverage) const {
+    // The columns that bins lo..hi not left out reach (1 where hit).
+    [[nodiscard]] std::vector<std::uint8_t> columnsHit(
+        int lo, int hi, const std::vector<std::uint8_t>& leftOut) const {
         std::vector<std::uint8_t> any(columns, 0);
         for (int b = lo; b <= hi; ++b) {
             const auto i = static_cast<std::size_t>(b);
@@ -94,17 +101,7 @@ struct DepthHistogram {
             const std::uint8_t* row = &columnHit[i * columns];
             for (std::size_t x = 0; x < columns; ++x) any[x] |= row[x];
         }
-        return spansTheFrame(any.data(), coverage);
-    }
-    // Over one row of column hits: the share of the columns hit, and whether that share is over
-    // kSceneryColumnCoverage with hits within kSceneryBorderMargin of both side borders.
-    [[nodiscard]] bool spansTheFrame(const std::uint8_t* hit, float& coverage) const {
-        const auto n = static_cast<std::ptrdiff_t>(columns);
-        coverage = static_cast<float>(std::count(hit, hit + n, 1)) / static_cast<float>(n);
-        const auto margin = std::max<std::ptrdiff_t>(
-            1, static_cast<std::ptrdiff_t>(kSceneryBorderMargin * static_cast<float>(n)));
-        return coverage > kSceneryColumnCoverage && std::find(hit, hit + margin, 1) != hit + margin &&
-               std::find(hit + n - margin, hit + n, 1) != hit + n;
+        return any;
     }
 };
 
@@ -129,14 +126,55 @@ DepthHistogram histogramOf(const cv::Mat1w& depth_mm, const cv::Mat1b& mask, flo
     return h;
 }
 
-// Bins whose pixels alone reach across the frame (kSceneryColumnCoverage): a wall or the ground
-// seen at an angle, where each depth is a stripe across the frame.
-std::vector<std::uint8_t> sceneryBins(const DepthHistogram& h) {
+// Share of the masked readings in bins lo..hi (not left out) that lie in rows those bins fill
+// across at least kStripeRowFill of the columns.
+double stripeShare(const cv::Mat1w& depth_mm, const cv::Mat1b& mask, const DepthHistogram& h,
+                   int lo, int hi, const std::vector<std::uint8_t>& leftOut) {
+    double inStripes = 0.0, all = 0.0;
+    const double stripe = kStripeRowFill * static_cast<double>(depth_mm.cols);
+    for (int y = 0; y < depth_mm.rows; ++y) {
+        const auto* d = depth_mm[y];
+        const auto* m = mask[y];
+        int inRow = 0;
+        for (int x = 0; x < depth_mm.cols; ++x) {
+            if (d[x] == 0 || m[x] == 0) continue;
+            const int b = h.binOf(d[x]);
+            inRow += b >= lo && b <= hi && !leftOut[static_cast<std::size_t>(b)];
+        }
+        all += inRow;
+        if (inRow >= stripe) inStripes += inRow;
+    }
+    return all > 0.0 ? inStripes / all : 0.0;
+}
+
+// Whether the bins lo..hi not left out are scenery seen edge-on (kSceneryColumnCoverage);
+// coverage gets the share of the image columns they reach.
+bool isScenery(const cv::Mat1w& depth_mm, const cv::Mat1b& mask, const DepthHistogram& h, int lo,
+               int hi, const std::vector<std::uint8_t>& leftOut, float& coverage) {
+    const std::vector<std::uint8_t> hit = h.columnsHit(lo, hi, leftOut);
+    const auto n = static_cast<std::ptrdiff_t>(hit.size());
+    coverage = static_cast<float>(std::count(hit.begin(), hit.end(), 1)) / static_cast<float>(n);
+    if (coverage <= kSceneryColumnCoverage) return false;
+    const auto margin = std::max<std::ptrdiff_t>(
+        1, static_cast<std::ptrdiff_t>(kSceneryBorderMargin * static_cast<float>(n)));
+    const bool reachesBothSides =
+        std::find(hit.begin(), hit.begin() + margin, 1) != hit.begin() + margin &&
+        std::find(hit.end() - margin, hit.end(), 1) != hit.end();
+    return reachesBothSides ||
+           stripeShare(depth_mm, mask, h, lo, hi, leftOut) >= kSceneryStripeShare;
+}
+
+// Bins that alone are scenery (isScenery): a wall or the ground seen at an angle, where each
+// depth is a stripe across the frame.
+std::vector<std::uint8_t> sceneryBins(const cv::Mat1w& depth_mm, const cv::Mat1b& mask,
+                                      const DepthHistogram& h) {
     std::vector<std::uint8_t> scenery(h.count.size(), 0);
+    const std::vector<std::uint8_t> none(h.count.size(), 0);
     for (std::size_t b = 0; b < h.count.size(); ++b) {
         if (h.count[b] == 0.0) continue;
         float coverage = 0.f;
-        scenery[b] = h.spansTheFrame(&h.columnHit[b * h.columns], coverage);
+        const int bin = static_cast<int>(b);
+        scenery[b] = isScenery(depth_mm, mask, h, bin, bin, none, coverage);
     }
     return scenery;
 }
@@ -188,12 +226,12 @@ DepthBand nearestMode(const DepthHistogram& h, const std::vector<std::uint8_t>& 
         // A mode spread across the frame is scenery seen edge-on: the strip of ground the sensor
         // still reads before grazing angles drop it, a wall, a table edge.
         float coverage = 0.f;
-        if (h.scenery(lo, hi, leftOut, coverage)) {
+        if (isScenery(depth_mm, mask, h, lo, hi, leftOut, coverage)) {
             report.notes.push_back(
                 "skipped the mode at " +
                 metres((static_cast<float>(peak) + 0.5f) * params.histogramBin_m) + ": it spans " +
                 std::to_string(static_cast<int>(100 * coverage)) +
-                " % of the image columns, out to both sides (ground or wall, not a tuft)");
+                " % of the image columns, across the frame (ground or wall, not a tuft)");
             peak = hi;
             continue;
         }
@@ -250,7 +288,7 @@ DepthBand automaticDepthBand(const cv::Mat1w& depth_mm, const cv::Mat1b& mask,
     // ground plane was removed: otherwise the ground at the tuft's own depths fills those bins
     // too, leaving them out loses the tuft, and what is left of the ground passes for one
     // (slim grass without a plane fit, 3 fused frames: no blades became 5 pieces of ground).
-    const std::vector<std::uint8_t> scenery = sceneryBins(h);
+    const std::vector<std::uint8_t> scenery = sceneryBins(depth_mm, mask, h);
     const auto sceneryCount = std::count(scenery.begin(), scenery.end(), 1);
     if (sceneryCount == 0) return band;
     double sceneryPixels = 0.0;
@@ -260,7 +298,7 @@ DepthBand automaticDepthBand(const cv::Mat1w& depth_mm, const cv::Mat1b& mask,
         "looking again without " + std::to_string(sceneryCount) + " depth bin(s) of " +
         std::to_string(static_cast<long long>(sceneryPixels)) + " px that each span over " +
         std::to_string(static_cast<int>(100 * kSceneryColumnCoverage)) +
-        " % of the image columns out to both sides (a wall or the ground seen at an angle)");
+        " % of the image columns across the frame (a wall or the ground seen at an angle)");
     band = nearestMode(h, scenery, depth_mm, mask, intrinsics, params, report);
     if (!band.found) return band;
     band.scenery = cv::Mat1b::zeros(depth_mm.size());
