@@ -25,8 +25,6 @@ namespace {
 constexpr const char* kTruthFolderName = "truth";
 constexpr const char* kTruthFileName = "blades.json";
 constexpr const char* kLabelsFolderName = "labels";
-// Frames are stamped as if the sensor ran at its native rate (Kinect v1: 30 Hz).
-constexpr double kFrameRate_hz = 30.0;
 constexpr float kMaxNoiseScale = 10.f;
 // Label images are mostly 0: the slowest, smallest PNG setting costs little here.
 constexpr int kLabelPngCompression = 9;
@@ -348,12 +346,12 @@ SynthTruth synthesize(const SynthOptions& options,
     capture::RecordingInfo info;
     info.sensor = "meadow synth (simulated Kinect v1, preset " + preset->name + ")";
     info.intrinsics = spec.camera.intrinsics;
-    info.frameRate_hz = kFrameRate_hz;
+    info.frameRate_hz = kSynthFrameRate_hz;
     capture::RecordingWriter writer(options.out, info);
     const fs::path truthFolder = options.out / kTruthFolderName;
 
     TuftSpec frameSpec = spec;
-    frameSpec.wind.frameRate_hz = static_cast<float>(kFrameRate_hz);
+    frameSpec.wind.frameRate_hz = static_cast<float>(kSynthFrameRate_hz);
     for (int i = 0; i < options.frames; ++i) {
         const SyntheticTuft tuft = buildTuft(frameSpec, i);
         const capture::SimulatedFrame frame = sensor.render(

@@ -12,8 +12,7 @@ inline const std::vector<std::string> kBladeTypePresets{"slim-grass", "quadratic
 inline const std::vector<float> kNoiseScales{0.f, 1.f, 2.f, 4.f};
 inline constexpr float kNominalNoise = 1.f;
 inline const std::vector<float> kModelingDistances_m{0.6f, 0.8f, 1.0f};
-inline constexpr double kFrameRate_hz = 30.0;  // as `meadow synth` records
-inline constexpr int kMaxFusionFrames = 5;     // frames rendered per trade-off scene
+inline constexpr int kMaxFusionFrames = 5;  // frames rendered per trade-off scene
 inline constexpr float kMillimetresPerMetre = 1000.f;
 inline constexpr double kPercent = 100.0;
 

@@ -30,7 +30,7 @@ Scene renderScene(const std::string& presetName, float noise, std::uint64_t seed
     params.seed = seed;
     params.distance_m = distance_m;
     modeling::TuftSpec spec = modeling::buildPresetSpec(*preset, params);
-    spec.wind.frameRate_hz = static_cast<float>(kFrameRate_hz);
+    spec.wind.frameRate_hz = static_cast<float>(modeling::kSynthFrameRate_hz);
     capture::NoiseModel model;
     model.scale = noise * preset->noiseMultiplier;
     const capture::SimulatedSensor sensor(spec.camera.intrinsics, model);
@@ -43,7 +43,7 @@ Scene renderScene(const std::string& presetName, float noise, std::uint64_t seed
         frame.depth_mm = sim.depth_mm;
         frame.intrinsics = spec.camera.intrinsics;
         frame.index = i;
-        frame.timestamp_s = i / kFrameRate_hz;
+        frame.timestamp_s = i / modeling::kSynthFrameRate_hz;
         scene.frames.push_back(std::move(frame));
         if (i == 0) {
             scene.labels = sim.labels;

@@ -83,6 +83,10 @@ struct SynthOptions {
 
 inline constexpr int kMaxSynthFrames = 10000;
 
+// The rate `meadow synth` stamps its frames at, as if the sensor ran at its native rate (Kinect
+// v1: 30 Hz); the wind presets move by it. Whoever renders a preset in memory uses it too.
+inline constexpr double kSynthFrameRate_hz = 30.0;
+
 // The simulated sensor's noise seed for frame `frame` of a synth run seeded `seed`: SplitMix64
 // (Steele, Lea & Flood 2014), so neighbouring seeds and frames share no noise. Whoever renders a
 // preset in memory uses it to get the frames `meadow synth` writes.
