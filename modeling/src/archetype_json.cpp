@@ -62,7 +62,8 @@ json archetypeToJson(const Archetype& a) {
                 {"tip_extension_mm", a.fit.tipExtension_mm}};
     j["source"] = {{"recording", a.source.recording},
                    {"frame", a.source.frame},
-                   {"blade_id", a.source.bladeId}};
+                   {"blade_id", a.source.bladeId},
+                   {"flags", a.source.flags}};
     j["knots_m"] = json::array();
     for (const glm::vec3& k : a.knots_m) j["knots_m"].push_back(vec3ToJson(k));
     return j;
@@ -123,6 +124,12 @@ Archetype archetypeFromJson(const json& value, const std::string& path) {
         a.source.recording = src.string("recording", "");
         a.source.frame = src.has("frame") ? src.integer("frame") : -1;
         a.source.bladeId = src.has("blade_id") ? src.integer("blade_id") : 0;
+        if (src.has("flags"))  // absent in older libraries
+            for (const json& line : src.array("flags")) {
+                if (!line.is_string())
+                    throw JsonFieldError(src.pathOf("flags"), "must hold reason lines (strings)");
+                a.source.flags.push_back(line.get<std::string>());
+            }
     }
     if (r.has("knots_m")) {
         const json& knots = r.array("knots_m");

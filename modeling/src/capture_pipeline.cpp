@@ -117,7 +117,7 @@ CaptureResult captureArchetypes(capture::DepthSource& source, const std::string&
             try {
                 // Rooted at the tuft's base (options.fit.root); a refusal is noted, not fatal.
                 BladeFit fit = fitSegmentedBlade(seg, index, depthFrame, options.fit,
-                                                 {sourceName, frameIndex, blade.id});
+                                                 {sourceName, frameIndex, blade.id, blade.reasons});
                 if (fit.skeleton.baseNotRooted)
                     for (const std::string& reason : fit.skeleton.reasons)
                         if (reason.starts_with("not rooted"))

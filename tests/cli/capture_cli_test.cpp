@@ -133,6 +133,16 @@ TEST(CaptureCli, BladesTooThinToModelSayHowToGetThem) {
     EXPECT_NE(r.output.find("bring the camera closer"), std::string::npos) << r.output;
     EXPECT_NE(r.output.find("--keep-flagged"), std::string::npos) << r.output;
     EXPECT_FALSE(fs::exists(dir / "lib.json"));
+    // Kept anyway, each such archetype says in the library what it was flagged for.
+    const auto kept = runMeadow("capture " + rec.string() + " --fuse 1 --keep-flagged --out " +
+                                (dir / "lib.json").string());
+    ASSERT_EQ(kept.exitCode, 0) << kept.output;
+    const auto library = meadow::modeling::loadArchetypeLibrary(dir / "lib.json");
+    ASSERT_FALSE(library.archetypes.empty());
+    int thin = 0;
+    for (const auto& a : library.archetypes)
+        for (const auto& reason : a.source.flags) thin += reason.starts_with("too-thin: ");
+    EXPECT_GE(thin, 1);
 }
 
 TEST(CaptureCli, CorruptFrameNamesTheFile) {

@@ -29,7 +29,7 @@ ArchetypeLibrary sampleLibrary() {
     a.fit.baseExtension_mm = 21.5f;
     a.fit.baseNotRooted = false;
     a.fit.tipExtension_mm = 7.25f;
-    a.source = {"samples/recordings/quadratic-leaf", 2, 3};
+    a.source = {"samples/recordings/quadratic-leaf", 2, 3, {"too-thin: mean width 1.9 px"}};
     a.knots_m = {{0, 0, 0}, {0.02f, 0.1f, 0}, {0.05f, 0.15f, -0.001f}};
     Archetype b = a;
     b.name = "grass-2";
@@ -82,6 +82,7 @@ TEST(ArchetypeLibrary, WriteThenReadIsIdentity) {
         EXPECT_EQ(a.source.recording, b.source.recording);
         EXPECT_EQ(a.source.frame, b.source.frame);
         EXPECT_EQ(a.source.bladeId, b.source.bladeId);
+        EXPECT_EQ(a.source.flags, b.source.flags);
         EXPECT_EQ(a.knots_m, b.knots_m);
     }
     ASSERT_EQ(back.merges.size(), 1u);
@@ -136,4 +137,9 @@ TEST(ArchetypeLibrary, RejectsNaNInfinityAndOutOfRangeValuesNamingTheField) {
         withArchetypeField("spine_m", R"({"v0": [0,0,0], "v1": [0,0.1], "v2": [0,0.2,0]})"),
         "archetypes[0].spine_m.v1: must be an array of 3 numbers");
     expectRejected(withArchetypeField("name", "7"), "archetypes[0].name: must be a string");
+    doc = nlohmann::json::parse(serialiseArchetypeLibrary(sampleLibrary()));
+    doc["archetypes"][0]["source"]["flags"] = nlohmann::json::array({1});
+    expectRejected(doc.dump(), "archetypes[0].source.flags: must hold reason lines");
+    doc["archetypes"][0]["source"]["flags"] = "too-thin";
+    expectRejected(doc.dump(), "archetypes[0].source.flags");
 }

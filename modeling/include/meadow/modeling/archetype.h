@@ -52,6 +52,9 @@ struct Source {
     std::string recording;  // recording folder / file name as given to capture
     int frame = -1;         // frame index in that recording (-1: unknown / authored)
     int bladeId = 0;        // BladeContour::id within that frame
+    // The segmenter's flags on the blade, one reason line each ("too-thin: mean width ..."):
+    // empty for a blade it vouched for; capture models flagged ones only with --keep-flagged.
+    std::vector<std::string> flags;
 };
 
 struct Archetype {
