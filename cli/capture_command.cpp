@@ -86,6 +86,8 @@ void runCapture(CaptureArgs& args) {
               << s.framesRead << " frame(s) -> " << result.library.archetypes.size()
               << " archetype(s) in " << args.out << (args.glb.empty() ? "" : " and " + args.glb)
               << '\n';
+    if (const std::string skipped = modeling::skippedSummary(s); !skipped.empty())
+        std::cout << skipped << '\n';
     if (!s.notes.empty()) {
         std::cout << s.notes.size() << " note(s)"
                   << (args.verbose ? ":" : " (--verbose lists them)") << '\n';

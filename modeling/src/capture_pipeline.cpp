@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cstdio>
-#include <map>
 
 #include "meadow/modeling/archetype_merge.h"
 #include "meadow/modeling/error.h"
@@ -34,30 +33,18 @@ std::string joined(const std::vector<std::string>& lines) {
 
 // Why nothing was modelled, in one bounded line: a long recording skips thousands of blades,
 // so the message counts the flags and quotes only the first few notes.
-std::string noBladeModelledMessage(const std::string& sourceName, const CaptureSummary& summary,
-                                   const std::map<std::string, int>& skippedBy,
-                                   int emptySegmentations) {
+std::string noBladeModelledMessage(const std::string& sourceName, const CaptureSummary& summary) {
     constexpr std::size_t kQuotedNotes = 3;
     std::string m = "capture: no blade of " + sourceName +
                     " could be modelled: " + std::to_string(summary.bladesFound) + " found in " +
                     std::to_string(summary.segmentations) + " segmentation(s)";
-    if (!skippedBy.empty()) {
-        m += ", skipped as";
-        const char* separator = " ";
-        for (const auto& [flag, count] : skippedBy) {
-            m += separator + flag + " (" + std::to_string(count) + ")";
-            separator = ", ";
-        }
-    }
-    if (emptySegmentations > 0)
-        m += ", " + std::to_string(emptySegmentations) + " segmentation(s) without blades";
+    if (summary.emptySegmentations > 0)
+        m += ", " + std::to_string(summary.emptySegmentations) + " segmentation(s) without blades";
+    if (const std::string skipped = skippedSummary(summary); !skipped.empty()) m += "; " + skipped;
     for (std::size_t i = 0; i < std::min(kQuotedNotes, summary.notes.size()); ++i)
         m += (i == 0 ? "; " : " | ") + summary.notes[i];
     if (summary.notes.size() > kQuotedNotes)
         m += " | and " + std::to_string(summary.notes.size() - kQuotedNotes) + " more";
-    if (skippedBy.contains(capture::toString(capture::BladeFlag::TooThin)))
-        m += "; blades under ~3 px wide: bring the camera closer (slim grass is found twice as "
-             "often from 0.5 m as from 0.8 m) or pass --keep-flagged to model them anyway";
     return m + "; check the depth band (--near/--far) or use --debug DIR to see the masks";
 }
 
@@ -68,6 +55,20 @@ std::string frameName(int index) {
 }
 
 }  // namespace
+
+std::string skippedSummary(const CaptureSummary& summary) {
+    if (summary.skippedBy.empty()) return {};
+    std::string m = "skipped as";
+    const char* separator = " ";
+    for (const auto& [flag, count] : summary.skippedBy) {
+        m += separator + flag + " (" + std::to_string(count) + ")";
+        separator = ", ";
+    }
+    if (summary.skippedBy.contains(capture::toString(capture::BladeFlag::TooThin)))
+        m += "; blades under ~3 px wide: bring the camera closer (slim grass is found twice as "
+             "often from 0.5 m as from 0.8 m) or pass --keep-flagged to model them anyway";
+    return m;
+}
 
 CaptureResult captureArchetypes(capture::DepthSource& source, const std::string& sourceName,
                                 const CaptureOptions& options, const CaptureProgress& progress) {
@@ -83,8 +84,6 @@ CaptureResult captureArchetypes(capture::DepthSource& source, const std::string&
     if (options.maxFrames > 0)
         total = total > 0 ? std::min(total, options.maxFrames) : options.maxFrames;
 
-    std::map<std::string, int> skippedBy;  // flag name -> blades it kept from modelling
-    int emptySegmentations = 0;
     std::vector<capture::DepthFrame> group;
     const auto processGroup = [&] {
         if (group.empty()) return;
@@ -94,7 +93,7 @@ CaptureResult captureArchetypes(capture::DepthSource& source, const std::string&
         if (!options.debugDir.empty())
             capture::writeDebugOverlay(options.debugDir / frameName(frameIndex), group.front(),
                                        seg);
-        emptySegmentations += seg.empty();
+        summary.emptySegmentations += seg.empty();
         if (seg.empty())
             summary.notes.push_back("frame " + std::to_string(frameIndex) + ": no blades (" +
                                     seg.noBladesReason + ")");
@@ -110,7 +109,8 @@ CaptureResult captureArchetypes(capture::DepthSource& source, const std::string&
                 std::any_of(blade.flags.begin(), blade.flags.end(), disqualifiesFromModelling);
             if (flagged && !options.keepFlagged) {
                 for (const capture::BladeFlag flag : blade.flags)
-                    if (disqualifiesFromModelling(flag)) ++skippedBy[capture::toString(flag)];
+                    if (disqualifiesFromModelling(flag))
+                        ++summary.skippedBy[capture::toString(flag)];
                 summary.notes.push_back(where + " skipped: " + joined(blade.reasons));
                 continue;
             }
@@ -145,8 +145,7 @@ CaptureResult captureArchetypes(capture::DepthSource& source, const std::string&
 
     if (summary.framesRead == 0) throw ModelingError("capture: " + sourceName + " has no frames");
     if (result.library.archetypes.empty())
-        throw ModelingError(
-            noBladeModelledMessage(sourceName, summary, skippedBy, emptySegmentations));
+        throw ModelingError(noBladeModelledMessage(sourceName, summary));
     if (options.maxArchetypes > 0) mergeNearDuplicates(result.library, options.maxArchetypes);
     return result;
 }

@@ -4,6 +4,7 @@
 // segmenter's per-pixel median, for a still tuft); every group yields its own blades.
 #include <filesystem>
 #include <functional>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -29,8 +30,15 @@ struct CaptureSummary {
     int segmentations = 0;
     int bladesFound = 0;
     int bladesModelled = 0;
-    std::vector<std::string> notes;  // one line per skipped blade or empty segmentation
+    int emptySegmentations = 0;            // segmentations that found no blade
+    std::map<std::string, int> skippedBy;  // flag name -> blades it kept from modelling
+    std::vector<std::string> notes;        // one line per skipped blade or empty segmentation
 };
+
+// What the blades were skipped as, with counts, and what to do about blades too thin to model
+// ("" when none was skipped): "skipped as too-thin (5), overlapping (3); blades under ~3 px
+// wide: bring the camera closer ... or pass --keep-flagged to model them anyway".
+std::string skippedSummary(const CaptureSummary& summary);
 
 struct CaptureResult {
     ArchetypeLibrary library;
