@@ -11,6 +11,8 @@
 //                                  fusion frames, tolerance (+ _knots/_width charts)
 //   fig12_<preset>.csv, fig12_all.csv, fig12.md, fig12.png  Fan & Sheng 2017 Fig. 12 on the
 //                                  skeletons the fit extracted from each preset
+//   segmentation_distance.csv/.md/.png  blade-type preset x camera distance: recall,
+//                                  precision, median IoU at nominal noise
 // Charts are drawn by tools/chart.sh (gnuplot). Times are wall time (std::chrono::steady_clock),
 // median over repetitions, one thread; the thread's CPU time is written beside it because the
 #include <chrono>
@@ -38,6 +40,7 @@ Plan makePlan(bool quick) {
         plan.bladeTypes = {"quadratic-leaf", "sharp-tip"};
         plan.noises = {0.f, 1.f};
         plan.distances_m = {0.8f};
+        plan.segmentationDistances_m = {0.5f, 0.8f};
         plan.segmentationSeeds = 1;
         plan.modelingSeeds = 1;
         plan.tradeoffSeeds = 1;
@@ -93,6 +96,8 @@ int run(int argc, char** argv) {
     modelingTradeoff(plan, scenes, out);
     std::cout << "[" << elapsed() << "]\n";
     fig12(fig12Input, out);
+    std::cout << "[" << elapsed() << "]\n";
+    segmentationOverDistance(plan, out);
     std::cout << "done in " << elapsed() << '\n';
     return 0;
 }

@@ -12,6 +12,8 @@ inline const std::vector<std::string> kBladeTypePresets{"slim-grass", "quadratic
 inline const std::vector<float> kNoiseScales{0.f, 1.f, 2.f, 4.f};
 inline constexpr float kNominalNoise = 1.f;
 inline const std::vector<float> kModelingDistances_m{0.6f, 0.8f, 1.0f};
+// `meadow synth --distance` allows 0.5-1.2 m.
+inline const std::vector<float> kSegmentationDistances_m{0.5f, 0.6f, 0.8f, 1.0f, 1.2f};
 inline constexpr int kMaxFusionFrames = 5;  // frames rendered per trade-off scene
 inline constexpr float kMillimetresPerMetre = 1000.f;
 inline constexpr double kPercent = 100.0;
@@ -21,6 +23,7 @@ struct Plan {
     std::vector<std::string> bladeTypes = kBladeTypePresets;
     std::vector<float> noises = kNoiseScales;
     std::vector<float> distances_m = kModelingDistances_m;
+    std::vector<float> segmentationDistances_m = kSegmentationDistances_m;
     int segmentationSeeds = 5;
     int modelingSeeds = 2;
     int tradeoffSeeds = 2;

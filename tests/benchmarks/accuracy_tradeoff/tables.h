@@ -1,5 +1,5 @@
 #pragma once
-// The accuracy / trade-off bench's five tables, each written under `out` as CSV and Markdown
+// The accuracy / trade-off bench's six tables, each written under `out` as CSV and Markdown
 // (and PNG charts where named): accuracy_tradeoff_bench.cpp runs them in this order.
 #include <filesystem>
 #include <glm/vec3.hpp>
@@ -42,5 +42,9 @@ void modelingTradeoff(const Plan& plan, const std::vector<Scene>& scenes,
 // 5. fig12_<preset>.csv, fig12_all.csv, fig12.md, fig12.png: Fan & Sheng 2017 Fig. 12 on the
 // captured skeletons.
 void fig12(const Fig12Input& input, const std::filesystem::path& out);
+
+// 6. segmentation_distance.csv/.md/.png: blade-type preset x camera distance at nominal noise,
+// one frame: recall, precision, median IoU (where the segmentation works, and where not).
+void segmentationOverDistance(const Plan& plan, const std::filesystem::path& out);
 
 }  // namespace meadow::bench
