@@ -6,6 +6,7 @@
 #include <span>
 #include <stdexcept>
 
+#include "accuracy_tradeoff/report.h"
 #include "meadow/capture/simulated_sensor.h"
 #include "meadow/modeling/error.h"
 #include "meadow/modeling/synthesize.h"
@@ -60,6 +61,17 @@ std::vector<Scene> tradeoffScenes(const Plan& plan) {
             scenes.push_back(renderScene(preset, kNominalNoise, static_cast<std::uint64_t>(seed),
                                          0.f, kMaxFusionFrames));
     return scenes;
+}
+
+void SegmentationTally::add(const BladeMatch& match, const capture::Segmentation& seg) {
+    const auto nTrue = static_cast<double>(match.trueIds.size());
+    const auto nFound = static_cast<double>(seg.blades.size());
+    trueBlades += nTrue;
+    foundBlades += nFound;
+    recall.push_back(nTrue > 0 ? match.matched / nTrue : 1.0);
+    if (nFound > 0) precision.push_back(match.matched / nFound);  // else undefined
+    medianIou.push_back(median(match.trueBestIou));
+    emptyFrames += seg.empty();
 }
 
 BladeMatch matchBlades(const cv::Mat1w& labels, const std::vector<BladeContour>& blades) {

@@ -41,6 +41,14 @@ struct BladeMatch {
 // rule as tests/modeling/segmentation_accuracy_test.cpp).
 BladeMatch matchBlades(const cv::Mat1w& labels, const std::vector<capture::BladeContour>& blades);
 
+// Recall, precision and median IoU frame by frame, and the blade counts, over several frames.
+struct SegmentationTally {
+    std::vector<double> recall, precision, medianIou;  // precision: frames that found a blade
+    double trueBlades = 0.0, foundBlades = 0.0;
+    int emptyFrames = 0;
+    void add(const BladeMatch& match, const capture::Segmentation& seg);
+};
+
 // The scene's first frame, or its first `fusionFrames` fused.
 capture::Segmentation segmentScene(const capture::Segmenter& segmenter, const Scene& scene,
                                    int fusionFrames);

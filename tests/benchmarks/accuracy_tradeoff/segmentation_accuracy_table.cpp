@@ -35,9 +35,8 @@ void segmentationAccuracy(const Plan& plan, const fs::path& out) {
     const capture::Segmenter segmenter;
     for (const std::string& preset : plan.segmentationPresets)
         for (float noise : plan.noises) {
-            std::vector<double> recall, precision, medianIou;
-            double trueSum = 0.0, foundSum = 0.0;
-            int flagged = 0, silentWrong = 0, clusterFlags = 0, empty = 0, zeroRecall = 0;
+            SegmentationTally t;
+            int flagged = 0, silentWrong = 0, clusterFlags = 0, zeroRecall = 0;
             std::map<std::string, int> flagKinds;
             std::map<BladeFlag, int> perFlag;
             for (int seed = 1; seed <= plan.segmentationSeeds; ++seed) {
@@ -45,15 +44,8 @@ void segmentationAccuracy(const Plan& plan, const fs::path& out) {
                     renderScene(preset, noise, static_cast<std::uint64_t>(seed), 0.f, 1);
                 const Segmentation seg = segmenter.segment(scene.frames.front());
                 const BladeMatch m = matchBlades(scene.labels, seg.blades);
-                const auto nTrue = static_cast<double>(m.trueIds.size());
-                const auto nFound = static_cast<double>(seg.blades.size());
-                trueSum += nTrue;
-                foundSum += nFound;
-                recall.push_back(nTrue > 0 ? m.matched / nTrue : 1.0);
-                if (nFound > 0) precision.push_back(m.matched / nFound);  // else undefined
-                medianIou.push_back(median(m.trueBestIou));
-                if (seg.empty()) ++empty;
-                if (m.matched == 0 && nTrue > 0) ++zeroRecall;
+                t.add(m, seg);
+                if (m.matched == 0 && !m.trueIds.empty()) ++zeroRecall;
                 for (std::size_t b = 0; b < seg.blades.size(); ++b) {
                     const BladeContour& blade = seg.blades[b];
                     if (!blade.flags.empty()) ++flagged;
@@ -70,19 +62,20 @@ void segmentationAccuracy(const Plan& plan, const fs::path& out) {
             }
             const double seeds = plan.segmentationSeeds;
             csv << preset << ',' << noise << ',' << plan.segmentationSeeds << ','
-                << fixed(trueSum / seeds, 2) << ',' << fixed(foundSum / seeds, 2) << ','
-                << fixed(mean(recall), 3) << ','
-                << (precision.empty() ? std::string() : fixed(mean(precision), 3)) << ','
-                << fixed(mean(medianIou), 3) << ',' << flagged << ',' << silentWrong;
+                << fixed(t.trueBlades / seeds, 2) << ',' << fixed(t.foundBlades / seeds, 2) << ','
+                << fixed(mean(t.recall), 3) << ','
+                << (t.precision.empty() ? std::string() : fixed(mean(t.precision), 3)) << ','
+                << fixed(mean(t.medianIou), 3) << ',' << flagged << ',' << silentWrong;
             for (BladeFlag f : kAllFlags) csv << ',' << perFlag[f];
-            csv << ',' << clusterFlags << ',' << empty << ',' << zeroRecall << '\n';
-            md << "| " << preset << " | " << noiseName(noise) << " | " << fixed(trueSum / seeds, 1)
-               << " / " << fixed(foundSum / seeds, 1) << " | " << fixed(mean(recall), 2) << " | "
-               << (precision.empty() ? std::string("–") : fixed(mean(precision), 2)) << " | "
-               << fixed(mean(medianIou), 2) << " | " << zeroRecall << " | "
-               << flagCounts(flagKinds, empty) << " | " << silentWrong << " |\n";
+            csv << ',' << clusterFlags << ',' << t.emptyFrames << ',' << zeroRecall << '\n';
+            md << "| " << preset << " | " << noiseName(noise) << " | "
+               << fixed(t.trueBlades / seeds, 1) << " / " << fixed(t.foundBlades / seeds, 1)
+               << " | " << fixed(mean(t.recall), 2) << " | "
+               << (t.precision.empty() ? std::string("–") : fixed(mean(t.precision), 2)) << " | "
+               << fixed(mean(t.medianIou), 2) << " | " << zeroRecall << " | "
+               << flagCounts(flagKinds, t.emptyFrames) << " | " << silentWrong << " |\n";
             std::cout << "  " << preset << ' ' << noiseName(noise) << ": recall "
-                      << fixed(mean(recall), 2) << ", median IoU " << fixed(mean(medianIou), 2)
+                      << fixed(mean(t.recall), 2) << ", median IoU " << fixed(mean(t.medianIou), 2)
                       << '\n';
         }
     writeText(out / "segmentation_accuracy.csv", csv.str());

@@ -19,36 +19,26 @@ void segmentationOverDistance(const Plan& plan, const std::filesystem::path& out
     const capture::Segmenter segmenter;
     for (const std::string& preset : plan.bladeTypes)
         for (float distance_m : plan.segmentationDistances_m) {
-            std::vector<double> recall, precision, medianIou;
-            double trueSum = 0.0, foundSum = 0.0;
-            int empty = 0;
+            SegmentationTally t;
             for (int seed = 1; seed <= plan.segmentationSeeds; ++seed) {
                 const Scene scene = renderScene(preset, kNominalNoise,
                                                 static_cast<std::uint64_t>(seed), distance_m, 1);
                 const capture::Segmentation seg = segmenter.segment(scene.frames.front());
-                const BladeMatch m = matchBlades(scene.labels, seg.blades);
-                const auto nTrue = static_cast<double>(m.trueIds.size());
-                const auto nFound = static_cast<double>(seg.blades.size());
-                trueSum += nTrue;
-                foundSum += nFound;
-                recall.push_back(nTrue > 0 ? m.matched / nTrue : 1.0);
-                if (nFound > 0) precision.push_back(m.matched / nFound);  // else undefined
-                medianIou.push_back(median(m.trueBestIou));
-                empty += seg.empty();
+                t.add(matchBlades(scene.labels, seg.blades), seg);
             }
             const double seeds = plan.segmentationSeeds;
             csv << preset << ',' << fixed(distance_m, 2) << ',' << plan.segmentationSeeds << ','
-                << fixed(trueSum / seeds, 2) << ',' << fixed(foundSum / seeds, 2) << ','
-                << fixed(mean(recall), 3) << ','
-                << (precision.empty() ? std::string() : fixed(mean(precision), 3)) << ','
-                << fixed(mean(medianIou), 3) << ',' << empty << '\n';
+                << fixed(t.trueBlades / seeds, 2) << ',' << fixed(t.foundBlades / seeds, 2) << ','
+                << fixed(mean(t.recall), 3) << ','
+                << (t.precision.empty() ? std::string() : fixed(mean(t.precision), 3)) << ','
+                << fixed(mean(t.medianIou), 3) << ',' << t.emptyFrames << '\n';
             md << "| " << preset << " | " << fixed(distance_m, 1) << " | "
-               << fixed(trueSum / seeds, 1) << " / " << fixed(foundSum / seeds, 1) << " | "
-               << fixed(mean(recall), 2) << " | "
-               << (precision.empty() ? std::string("–") : fixed(mean(precision), 2)) << " | "
-               << fixed(mean(medianIou), 2) << " | " << empty << " |\n";
+               << fixed(t.trueBlades / seeds, 1) << " / " << fixed(t.foundBlades / seeds, 1)
+               << " | " << fixed(mean(t.recall), 2) << " | "
+               << (t.precision.empty() ? std::string("–") : fixed(mean(t.precision), 2)) << " | "
+               << fixed(mean(t.medianIou), 2) << " | " << t.emptyFrames << " |\n";
             std::cout << "  " << preset << " at " << fixed(distance_m, 1) << " m: recall "
-                      << fixed(mean(recall), 2) << ", median IoU " << fixed(mean(medianIou), 2)
+                      << fixed(mean(t.recall), 2) << ", median IoU " << fixed(mean(t.medianIou), 2)
                       << '\n';
         }
     writeText(out / "segmentation_distance.csv", csv.str());
