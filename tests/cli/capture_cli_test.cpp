@@ -201,4 +201,7 @@ TEST(CaptureCli, HelpExplainsTheOptionsAndDefaults) {
          {"--out", "--glb", "--debug", "--fuse", "--max-archetypes", "--tolerance-mm", "--plane"})
         EXPECT_NE(r.output.find(option), std::string::npos) << option << " missing from:\n"
                                                             << r.output;
+    // Where capture works is part of how to use it (README, "Segmentation over camera distance").
+    EXPECT_NE(r.output.find("Camera distance"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("0.6-1.2 m"), std::string::npos) << r.output;
 }
