@@ -181,16 +181,13 @@ void rootSkeleton(Skeleton& s, const ClusterBase& base, const RootParams& params
     for (float& f : s.arcFraction) f = total > 0.f ? f / total : 0.f;
 }
 
-BladeFit fitSegmentedBlade(const capture::Segmentation& segmentation, std::size_t bladeIndex,
-                           const capture::DepthFrame& frame, const BladeFitParams& params,
-                           const Source& source) {
+Skeleton segmentedBladeSkeleton(const capture::Segmentation& segmentation, std::size_t bladeIndex,
+                                const capture::DepthFrame& frame, const BladeFitParams& params) {
     if (bladeIndex >= segmentation.blades.size())
-        throw std::invalid_argument("fitSegmentedBlade: blade index " + std::to_string(bladeIndex) +
-                                    " of " + std::to_string(segmentation.blades.size()));
+        throw std::invalid_argument("segmentedBladeSkeleton: blade index " +
+                                    std::to_string(bladeIndex) + " of " +
+                                    std::to_string(segmentation.blades.size()));
     const capture::BladeContour& blade = segmentation.blades[bladeIndex];
-    Source src = source;
-    if (src.frame < 0) src.frame = frame.index;
-    if (src.bladeId == 0) src.bladeId = blade.id;
     SkeletonParams skeletonParams = params.skeleton;
     if (skeletonParams.minDepth_m == 0.f && skeletonParams.maxDepth_m == 0.f) {
         skeletonParams.minDepth_m = segmentation.tuftNearest_m;
@@ -216,6 +213,17 @@ BladeFit fitSegmentedBlade(const capture::Segmentation& segmentation, std::size_
                 std::to_string(params.root.maxDepthWindowRadius_px) + " px of its base point");
         }
     }
+    return skeleton;
+}
+
+BladeFit fitSegmentedBlade(const capture::Segmentation& segmentation, std::size_t bladeIndex,
+                           const capture::DepthFrame& frame, const BladeFitParams& params,
+                           const Source& source) {
+    const Skeleton skeleton = segmentedBladeSkeleton(segmentation, bladeIndex, frame, params);
+    const capture::BladeContour& blade = segmentation.blades[bladeIndex];
+    Source src = source;
+    if (src.frame < 0) src.frame = frame.index;
+    if (src.bladeId == 0) src.bladeId = blade.id;
     return fitArchetype(skeleton, params, src, blade.mask, &frame.intrinsics, blade.maskOrigin_px);
 }
 

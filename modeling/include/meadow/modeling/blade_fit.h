@@ -140,11 +140,15 @@ BladeFit fitArchetype(const Skeleton& skeleton, const BladeFitParams& params = {
 // blade cannot be fitted (no depth, degenerate skeleton).
 BladeFit fitBlade(const capture::BladeContour& blade, const capture::DepthFrame& frame,
                   const BladeFitParams& params = {}, const Source& source = {});
-// The blade segmentation.blades[bladeIndex] as capture fits it: extractSkeleton, then, when
-// params.tip.enabled, extendSkeletonTip (blade_tip.h), then, when
-// params.root.enabled, rootSkeleton at its cluster's base (blade_root.h; a blade whose base cannot
-// be found or is refused is fitted unrooted, with FitReport::baseNotRooted set), then
-// fitArchetype. Throws ModelingError as fitBlade does.
+// The skeleton of segmentation.blades[bladeIndex] as capture fits it: extractSkeleton, then, when
+// params.tip.enabled, extendSkeletonTip (blade_tip.h), then, when params.root.enabled,
+// rootSkeleton at its cluster's base (blade_root.h; a blade whose base cannot be found or is
+// refused stays unrooted, with Skeleton::baseNotRooted set and a reason). Throws ModelingError
+// when the blade has no valid depth.
+Skeleton segmentedBladeSkeleton(const capture::Segmentation& segmentation, std::size_t bladeIndex,
+                                const capture::DepthFrame& frame,
+                                const BladeFitParams& params = {});
+// segmentedBladeSkeleton, then fitArchetype. Throws ModelingError as fitBlade does.
 BladeFit fitSegmentedBlade(const capture::Segmentation& segmentation, std::size_t bladeIndex,
                            const capture::DepthFrame& frame, const BladeFitParams& params = {},
                            const Source& source = {});
