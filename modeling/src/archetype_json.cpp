@@ -63,7 +63,10 @@ json archetypeToJson(const Archetype& a) {
     j["source"] = {{"recording", a.source.recording},
                    {"frame", a.source.frame},
                    {"blade_id", a.source.bladeId},
-                   {"flags", a.source.flags}};
+                   {"flags", a.source.flags},
+                   {"seen_in", json::array()}};
+    for (const BladeSighting& seen : a.source.seenIn)
+        j["source"]["seen_in"].push_back({{"frame", seen.frame}, {"blade_id", seen.bladeId}});
     j["knots_m"] = json::array();
     for (const glm::vec3& k : a.knots_m) j["knots_m"].push_back(vec3ToJson(k));
     return j;
@@ -130,6 +133,16 @@ Archetype archetypeFromJson(const json& value, const std::string& path) {
                     throw JsonFieldError(src.pathOf("flags"), "must hold reason lines (strings)");
                 a.source.flags.push_back(line.get<std::string>());
             }
+        if (src.has("seen_in")) {  // absent in older libraries
+            const json& seen = src.array("seen_in");
+            for (std::size_t i = 0; i < seen.size(); ++i) {
+                const std::string path = src.pathOf("seen_in") + "[" + std::to_string(i) + "]";
+                if (!seen[i].is_object())
+                    throw JsonFieldError(path, "must be an object with frame and blade_id");
+                const JsonReader entry(seen[i], path);
+                a.source.seenIn.push_back({entry.integer("frame"), entry.integer("blade_id")});
+            }
+        }
     }
     if (r.has("knots_m")) {
         const json& knots = r.array("knots_m");

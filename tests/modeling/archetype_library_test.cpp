@@ -29,7 +29,11 @@ ArchetypeLibrary sampleLibrary() {
     a.fit.baseExtension_mm = 21.5f;
     a.fit.baseNotRooted = false;
     a.fit.tipExtension_mm = 7.25f;
-    a.source = {"samples/recordings/quadratic-leaf", 2, 3, {"too-thin: mean width 1.9 px"}};
+    a.source = {"samples/recordings/quadratic-leaf",
+                2,
+                3,
+                {"too-thin: mean width 1.9 px"},
+                {{2, 3}, {5, 1}}};
     a.knots_m = {{0, 0, 0}, {0.02f, 0.1f, 0}, {0.05f, 0.15f, -0.001f}};
     Archetype b = a;
     b.name = "grass-2";
@@ -83,6 +87,11 @@ TEST(ArchetypeLibrary, WriteThenReadIsIdentity) {
         EXPECT_EQ(a.source.frame, b.source.frame);
         EXPECT_EQ(a.source.bladeId, b.source.bladeId);
         EXPECT_EQ(a.source.flags, b.source.flags);
+        ASSERT_EQ(a.source.seenIn.size(), b.source.seenIn.size());
+        for (std::size_t k = 0; k < a.source.seenIn.size(); ++k) {
+            EXPECT_EQ(a.source.seenIn[k].frame, b.source.seenIn[k].frame);
+            EXPECT_EQ(a.source.seenIn[k].bladeId, b.source.seenIn[k].bladeId);
+        }
         EXPECT_EQ(a.knots_m, b.knots_m);
     }
     ASSERT_EQ(back.merges.size(), 1u);
@@ -142,4 +151,22 @@ TEST(ArchetypeLibrary, RejectsNaNInfinityAndOutOfRangeValuesNamingTheField) {
     expectRejected(doc.dump(), "archetypes[0].source.flags: must hold reason lines");
     doc["archetypes"][0]["source"]["flags"] = "too-thin";
     expectRejected(doc.dump(), "archetypes[0].source.flags");
+    doc["archetypes"][0]["source"]["flags"] = nlohmann::json::array();
+    doc["archetypes"][0]["source"]["seen_in"] = nlohmann::json::array({7});
+    expectRejected(doc.dump(), "archetypes[0].source.seen_in[0]: must be an object");
+    doc["archetypes"][0]["source"]["seen_in"] = R"([{"frame": 3, "blade_id": 1.5}])"_json;
+    expectRejected(doc.dump(), "archetypes[0].source.seen_in[0].blade_id: must be an integer");
+}
+
+TEST(ArchetypeLibrary, ALibraryWrittenBeforeSourceFlagsAndSightingsStillReads) {
+    nlohmann::json doc = nlohmann::json::parse(serialiseArchetypeLibrary(sampleLibrary()));
+    for (nlohmann::json& a : doc["archetypes"]) {
+        a["source"].erase("flags");
+        a["source"].erase("seen_in");
+    }
+    const ArchetypeLibrary back = parseArchetypeLibrary(doc.dump(), "old");
+    ASSERT_EQ(back.archetypes.size(), 2u);
+    EXPECT_TRUE(back.archetypes[0].source.flags.empty());
+    EXPECT_TRUE(back.archetypes[0].source.seenIn.empty());
+    EXPECT_EQ(back.archetypes[0].source.frame, 2);
 }

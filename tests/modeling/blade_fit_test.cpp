@@ -204,9 +204,9 @@ TEST(BladeFit, RecoversSyntheticBladeTipHeightAndWidthWithoutNoise) {
     for (const float bend : {0.f, 0.3f, 0.6f}) {
         const auto truth = makeBlade({0.02f, 0.09f, 0.5f}, 0.12f, bend, 0.006f, 0.2f);
         const auto view = renderBlade(truth, fineIntrinsics(), 0.9f);
-        const BladeFit fit =
-            fitBlade(view.blade, view.frame, {},
-                     {.recording = "synthetic", .frame = 3, .bladeId = 7, .flags = {}});
+        const BladeFit fit = fitBlade(
+            view.blade, view.frame, {},
+            {.recording = "synthetic", .frame = 3, .bladeId = 7, .flags = {}, .seenIn = {}});
         const Archetype& a = fit.archetype;
         const float tipError_mm = glm::distance(fit.spineCamera_m.v2, truth.spine_m.v2) * 1e3f;
         const float heightError =

@@ -47,6 +47,13 @@ struct FitReport {
     float tipExtension_mm = 0.f;
 };
 
+// One observation of a blade: the first frame of the fused group that saw it, and the blade's id
+// in that group's segmentation.
+struct BladeSighting {
+    int frame = -1;
+    int bladeId = 0;
+};
+
 // Where an archetype came from, so a library entry can be traced back to its capture.
 struct Source {
     std::string recording;  // recording folder / file name as given to capture
@@ -55,6 +62,10 @@ struct Source {
     // The segmenter's flags on the blade, one reason line each ("too-thin: mean width ..."):
     // empty for a blade it vouched for; capture models flagged ones only with --keep-flagged.
     std::vector<std::string> flags;
+    // Every observation the archetype was fitted to, the first being (frame, bladeId): capture
+    // fits a blade seen in several fused groups once, to the mean of its skeletons
+    // (blade_tracks.h). Empty for an authored archetype.
+    std::vector<BladeSighting> seenIn;
 };
 
 struct Archetype {
