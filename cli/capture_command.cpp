@@ -86,6 +86,10 @@ void runCapture(CaptureArgs& args) {
               << s.framesRead << " frame(s) -> " << result.library.archetypes.size()
               << " archetype(s) in " << args.out << (args.glb.empty() ? "" : " and " + args.glb)
               << '\n';
+    if (s.averagedArchetypes > 0)
+        std::cout << s.averagedArchetypes << " archetype(s) fitted to a blade seen in several of "
+                  << s.segmentations << " fused groups (the mean of its skeletons; --per-group "
+                  << "keeps one archetype per group)\n";
     if (const std::string skipped = modeling::skippedSummary(s); !skipped.empty())
         std::cout << skipped << '\n';
     if (!s.notes.empty()) {
@@ -169,6 +173,12 @@ void addCaptureCommand(CLI::App& app) {
                     "between blades stay)")
         ->capture_default_str()
         ->check(CLI::Range(0.f, 20.f));
+    cmd->add_flag_callback(
+        "--per-group", [args] { args->options.tracks.enabled = false; },
+        "One archetype per blade and fused group, for a tuft or camera that moves between groups. "
+        "By default a blade seen in several groups (its skeletons within 3 % of its length of "
+        "each other) is fitted once, to the mean of its skeletons, which lies nearer the blade "
+        "than any one of them (README, \"One archetype per blade\")");
     cmd->add_flag(
         "--keep-flagged", args->options.keepFlagged,
         "Also model blades the segmenter flagged (overlapping, curling, too thin, base hidden)");

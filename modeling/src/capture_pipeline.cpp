@@ -48,6 +48,15 @@ std::string noBladeModelledMessage(const std::string& sourceName, const CaptureS
     return m + "; check the depth band (--near/--far) or use --debug DIR to see the masks";
 }
 
+// What fitting a tracked blade needs of each observation besides its skeleton.
+struct Observed {
+    BladeSighting sighting;
+    std::vector<std::string> flags;  // the segmenter's reason lines
+    cv::Mat1b mask;
+    cv::Point maskOrigin_px;
+    capture::Intrinsics intrinsics;
+};
+
 std::string frameName(int index) {
     char name[32];
     std::snprintf(name, sizeof name, "frame_%06d.png", index);
@@ -84,11 +93,14 @@ CaptureResult captureArchetypes(capture::DepthSource& source, const std::string&
     if (options.maxFrames > 0)
         total = total > 0 ? std::min(total, options.maxFrames) : options.maxFrames;
 
+    // Every trustworthy blade of every group, as a skeleton; fitted once per track at the end.
+    std::vector<BladeObservation> observations;
+    std::vector<Observed> observed;  // parallel: what the fit needs beyond the skeleton
     std::vector<capture::DepthFrame> group;
     const auto processGroup = [&] {
         if (group.empty()) return;
         const capture::Segmentation seg = segmenter.segment(group);
-        ++summary.segmentations;
+        const int groupIndex = summary.segmentations++;
         const int frameIndex = group.front().index;
         if (!options.debugDir.empty())
             capture::writeDebugOverlay(options.debugDir / frameName(frameIndex), group.front(),
@@ -116,16 +128,17 @@ CaptureResult captureArchetypes(capture::DepthSource& source, const std::string&
             }
             try {
                 // Rooted at the tuft's base (options.fit.root); a refusal is noted, not fatal.
-                BladeFit fit = fitSegmentedBlade(seg, index, depthFrame, options.fit,
-                                                 {sourceName, frameIndex, blade.id, blade.reasons});
-                if (fit.skeleton.baseNotRooted)
-                    for (const std::string& reason : fit.skeleton.reasons)
+                Skeleton skeleton = segmentedBladeSkeleton(seg, index, depthFrame, options.fit);
+                if (skeleton.baseNotRooted)
+                    for (const std::string& reason : skeleton.reasons)
                         if (reason.starts_with("not rooted"))
                             summary.notes.push_back(where + " modelled unrooted: " + reason);
-                fit.archetype.name =
-                    "f" + std::to_string(frameIndex) + "-b" + std::to_string(blade.id);
-                result.library.archetypes.push_back(std::move(fit.archetype));
-                ++summary.bladesModelled;
+                observations.push_back({groupIndex, std::move(skeleton)});
+                observed.push_back({{frameIndex, blade.id},
+                                    blade.reasons,
+                                    blade.mask,
+                                    blade.maskOrigin_px,
+                                    depthFrame.intrinsics});
             } catch (const ModelingError& e) {
                 summary.notes.push_back(where + " not modelled: " + e.what());
             }
@@ -142,6 +155,38 @@ CaptureResult captureArchetypes(capture::DepthSource& source, const std::string&
         if (progress) progress(summary.framesRead, std::max(total, summary.framesRead));
     }
     processGroup();
+
+    for (const std::vector<std::size_t>& track : trackBlades(observations, options.tracks)) {
+        std::vector<const Skeleton*> skeletons;
+        Source src{sourceName, -1, 0, {}, {}};
+        for (const std::size_t i : membersForMean(observations, track, options.tracks))
+            skeletons.push_back(&observations[i].skeleton);
+        for (const std::size_t i : track) {
+            src.seenIn.push_back(observed[i].sighting);
+            for (const std::string& flag : observed[i].flags)
+                if (std::find(src.flags.begin(), src.flags.end(), flag) == src.flags.end())
+                    src.flags.push_back(flag);
+        }
+        const Observed& first = observed[track.front()];
+        src.frame = first.sighting.frame;
+        src.bladeId = first.sighting.bladeId;
+        const std::string name =
+            "f" + std::to_string(src.frame) + "-b" + std::to_string(src.bladeId);
+        try {
+            // The distance-transform width check reads the first observation's mask.
+            BladeFit fit = fitArchetype(meanSkeleton(skeletons), options.fit, src, first.mask,
+                                        &first.intrinsics, first.maskOrigin_px);
+            fit.archetype.name = name;
+            result.library.archetypes.push_back(std::move(fit.archetype));
+            summary.bladesModelled += static_cast<int>(track.size());
+            summary.averagedArchetypes += track.size() > 1;
+        } catch (const ModelingError& e) {
+            summary.notes.push_back("frame " + std::to_string(src.frame) + " blade " +
+                                    std::to_string(src.bladeId) + " (seen in " +
+                                    std::to_string(track.size()) +
+                                    " group(s)) not modelled: " + e.what());
+        }
+    }
 
     if (summary.framesRead == 0) throw ModelingError("capture: " + sourceName + " has no frames");
     if (result.library.archetypes.empty())

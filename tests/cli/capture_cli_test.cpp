@@ -205,3 +205,29 @@ TEST(CaptureCli, HelpExplainsTheOptionsAndDefaults) {
     EXPECT_NE(r.output.find("Camera distance"), std::string::npos) << r.output;
     EXPECT_NE(r.output.find("0.6-1.2 m"), std::string::npos) << r.output;
 }
+
+// A still tuft read in four fused groups: each blade becomes one archetype fitted to the mean of
+// its four skeletons and says where it was seen; --per-group keeps one archetype per group.
+TEST(CaptureCli, ABladeSeenInSeveralGroupsBecomesOneArchetype) {
+    const fs::path dir = freshTempDir("capture_tracks");
+    const fs::path rec = synthesised(dir, "--preset bamboo-leaf --seed 1 --frames 12");
+    const auto r = runMeadow("capture " + rec.string() + " --out " + (dir / "lib.json").string());
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_NE(r.output.find("fitted to a blade seen in several of 4 fused groups"),
+              std::string::npos)
+        << r.output;
+    const auto tracked = meadow::modeling::loadArchetypeLibrary(dir / "lib.json");
+    const auto perGroup = runMeadow("capture " + rec.string() + " --per-group --out " +
+                                    (dir / "groups.json").string());
+    ASSERT_EQ(perGroup.exitCode, 0) << perGroup.output;
+    const auto groups = meadow::modeling::loadArchetypeLibrary(dir / "groups.json");
+    // bamboo-leaf seed 1 has 4 blades, each found in all 4 groups.
+    ASSERT_EQ(tracked.archetypes.size(), 4u);
+    EXPECT_EQ(groups.archetypes.size(), 16u);
+    for (const auto& a : tracked.archetypes) {
+        ASSERT_EQ(a.source.seenIn.size(), 4u) << a.name;
+        for (int g = 0; g < 4; ++g) EXPECT_EQ(a.source.seenIn[g].frame, 3 * g) << a.name;
+        EXPECT_EQ(a.name, "f0-b" + std::to_string(a.source.seenIn[0].bladeId));
+    }
+    for (const auto& a : groups.archetypes) EXPECT_EQ(a.source.seenIn.size(), 1u) << a.name;
+}

@@ -1,7 +1,9 @@
 #pragma once
 // The capture job end to end: a depth source -> segmentation -> one archetype per trustworthy
 // blade -> an archetype library. Frames are taken in groups of `fusionFrames` (fused by the
-// segmenter's per-pixel median, for a still tuft); every group yields its own blades.
+// segmenter's per-pixel median, for a still tuft); every group yields its own observations of
+// the blades, and a blade seen in several groups is fitted once, to the mean of its skeletons
+// (blade_tracks.h).
 #include <filesystem>
 #include <functional>
 #include <map>
@@ -12,6 +14,7 @@
 #include "meadow/capture/segmenter.h"
 #include "meadow/modeling/archetype_library.h"
 #include "meadow/modeling/blade_fit.h"
+#include "meadow/modeling/blade_tracks.h"
 
 namespace meadow::modeling {
 
@@ -22,6 +25,7 @@ struct CaptureOptions {
     int maxFrames = 0;         // stop after this many frames; 0 = the whole source
     int maxArchetypes = 0;     // merge near-duplicates down to this many; 0 = keep every blade
     bool keepFlagged = false;  // also model blades the segmenter flagged (overlap, curl, ...)
+    BladeTrackParams tracks;   // one archetype per blade across groups (enabled = false: per group)
     std::filesystem::path debugDir;  // overlay PNG per segmentation when not empty
 };
 
@@ -29,7 +33,8 @@ struct CaptureSummary {
     int framesRead = 0;
     int segmentations = 0;
     int bladesFound = 0;
-    int bladesModelled = 0;
+    int bladesModelled = 0;                // observations behind the library's archetypes
+    int averagedArchetypes = 0;            // archetypes fitted to two or more observations
     int emptySegmentations = 0;            // segmentations that found no blade
     std::map<std::string, int> skippedBy;  // flag name -> blades it kept from modelling
     std::vector<std::string> notes;        // one line per skipped blade or empty segmentation
