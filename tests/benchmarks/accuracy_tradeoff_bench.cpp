@@ -98,6 +98,8 @@ int run(int argc, char** argv) {
     fig12(fig12Input, out);
     std::cout << "[" << elapsed() << "]\n";
     segmentationOverDistance(plan, out);
+    std::cout << "[" << elapsed() << "]\n";
+    modelingOverGroups(plan, out);
     std::cout << "done in " << elapsed() << '\n';
     return 0;
 }

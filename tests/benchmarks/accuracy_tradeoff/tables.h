@@ -1,5 +1,5 @@
 #pragma once
-// The accuracy / trade-off bench's six tables, each written under `out` as CSV and Markdown
+// The accuracy / trade-off bench's seven tables, each written under `out` as CSV and Markdown
 // (and PNG charts where named): accuracy_tradeoff_bench.cpp runs them in this order.
 #include <filesystem>
 #include <glm/vec3.hpp>
@@ -46,5 +46,11 @@ void fig12(const Fig12Input& input, const std::filesystem::path& out);
 // 6. segmentation_distance.csv/.md/.png: blade-type preset x camera distance at nominal noise,
 // one frame: recall, precision, median IoU (where the segmentation works, and where not).
 void segmentationOverDistance(const Plan& plan, const std::filesystem::path& out);
+
+// 7. modeling_groups.csv/.md/.png (+ _per_blade.csv, the chart's rows): blade-type preset x fused
+// groups (1, 2, 4, 8 groups of capture's fused frames) at nominal noise: each blade fitted once to
+// the mean of its skeletons across groups (blade_tracks.h), its tip, height and width errors and
+// the CPU per tuft.
+void modelingOverGroups(const Plan& plan, const std::filesystem::path& out);
 
 }  // namespace meadow::bench
