@@ -1,5 +1,6 @@
 // `meadow capture`: a depth source -> an archetype library (JSON, optionally .glb).
 #include <CLI/CLI.hpp>
+#include <cmath>
 #include <iostream>
 #include <memory>
 #include <sstream>
@@ -176,9 +177,11 @@ void addCaptureCommand(CLI::App& app) {
     cmd->add_flag_callback(
         "--per-group", [args] { args->options.tracks.enabled = false; },
         "One archetype per blade and fused group, for a tuft or camera that moves between groups. "
-        "By default a blade seen in several groups (its skeletons within 3 % of its length of "
-        "each other) is fitted once, to the mean of its skeletons, which lies nearer the blade "
-        "than any one of them (README, \"One archetype per blade\")");
+        "By default a blade seen in several groups (its skeletons within " +
+            std::to_string(static_cast<int>(
+                std::lround(100.f * modeling::BladeTrackParams{}.maxDistanceFraction))) +
+            " % of its length of each other) is fitted once, to the mean of its skeletons, which "
+            "lies nearer the blade than any one of them (README, \"One archetype per blade\")");
     cmd->add_flag(
         "--keep-flagged", args->options.keepFlagged,
         "Also model blades the segmenter flagged (overlapping, curling, too thin, base hidden)");
