@@ -117,7 +117,10 @@ void addCaptureCommand(CLI::App& app) {
         "(recall 0.80-1.00); grass blades 2-5 mm wide are found best close (recall 0.40-0.53 at "
         "0.5 m, 0.24 at 0.8 m, 0 at 1.2 m). Aim the camera at the tuft from the side, its base in "
         "view: a camera a few centimetres above the ground, looking along it, can leave the ground "
-        "unfitted.");
+        "unfitted. A still tuft is modelled better from more frames: record a dozen or more, and "
+        "each "
+        "blade becomes one archetype fitted to its views from every group of --fuse frames "
+        "(README, \"One archetype per blade\").");
     cmd->add_option("SOURCE", args->source,
                     "Recording folder, plain folder of 16-bit PNGs (with --intrinsics and "
                     "--depth-unit), .oni file, or openni:// for a live camera")
