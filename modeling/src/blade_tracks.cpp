@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <glm/common.hpp>
 #include <glm/geometric.hpp>
 #include <limits>
 #include <map>
@@ -27,21 +28,41 @@ float segmentDistance_m(const glm::vec3& p, const glm::vec3& a, const glm::vec3&
     return glm::distance(p, a + t * ab);
 }
 
-// Mean distance of the shorter polyline's upper three quarters to the longer polyline.
-float upperDistance_m(const std::vector<glm::vec3>& a, const std::vector<glm::vec3>& b) {
+// Mean distance of the shorter polyline's upper three quarters to the longer polyline, or +inf
+// as soon as that mean must exceed limit_m (most pairs are two different blades, far apart).
+float upperDistance_m(const std::vector<glm::vec3>& a, const std::vector<glm::vec3>& b,
+                      float limit_m = std::numeric_limits<float>::infinity()) {
     if (a.size() < 2 || b.size() < 2) return std::numeric_limits<float>::infinity();
     const bool aShorter = polylineLength_m(a) <= polylineLength_m(b);
     const std::vector<glm::vec3>& from = aShorter ? a : b;
     const std::vector<glm::vec3>& to = aShorter ? b : a;
+    const std::size_t first = from.size() / 4;
+    const double budget = static_cast<double>(limit_m) * static_cast<double>(from.size() - first);
+    // A point's distance to the longer polyline's bounding box bounds its distance to the
+    // polyline from below: a cheap first test, and most pairs fail it.
+    glm::vec3 lo = to.front(), hi = to.front();
+    for (const glm::vec3& p : to) lo = glm::min(lo, p), hi = glm::max(hi, p);
+    double bound = 0.0;
+    for (std::size_t j = first; j < from.size() && bound <= budget; ++j)
+        bound += glm::distance(from[j], glm::clamp(from[j], lo, hi));
+    if (bound > budget) return std::numeric_limits<float>::infinity();
+    // Both run root to tip, so the nearest segment moves along `to` as j moves along `from`: it is
+    // searched for over all of `to` once, then near the last one found.
+    constexpr std::size_t kBehind = 4, kAhead = 12;
     double sum = 0.0;
-    std::size_t count = 0;
-    for (std::size_t j = from.size() / 4; j < from.size(); ++j, ++count) {
+    std::size_t last = 0;
+    for (std::size_t j = first; j < from.size(); ++j) {
+        const std::size_t begin =
+            j == first ? 1 : std::max<std::size_t>(1, last - std::min(last, kBehind));
+        const std::size_t end = j == first ? to.size() : std::min(to.size(), last + kAhead);
         float nearest = std::numeric_limits<float>::infinity();
-        for (std::size_t k = 1; k < to.size(); ++k)
-            nearest = std::min(nearest, segmentDistance_m(from[j], to[k - 1], to[k]));
+        for (std::size_t k = begin; k < end; ++k)
+            if (const float d = segmentDistance_m(from[j], to[k - 1], to[k]); d < nearest)
+                nearest = d, last = k;
         sum += nearest;
+        if (sum > budget) return std::numeric_limits<float>::infinity();
     }
-    return static_cast<float>(sum / static_cast<double>(count));
+    return static_cast<float>(sum / static_cast<double>(from.size() - first));
 }
 
 // Element-wise mean of one member vector of every skeleton; the first skeleton's when their sizes
@@ -106,6 +127,13 @@ std::vector<std::vector<std::size_t>> trackBlades(const std::vector<BladeObserva
         byGroup[observations[i].group].push_back(i);
     std::vector<std::vector<std::size_t>> tracks;
     std::vector<int> lastGroup;
+    // Each track's mean points and their length, recomputed when the track takes a view.
+    std::vector<std::vector<glm::vec3>> means;
+    std::vector<float> meanLengths;
+    const auto refresh = [&](std::size_t t) {
+        means[t] = trackPoints(observations, tracks[t], params);
+        meanLengths[t] = polylineLength_m(means[t]);
+    };
     for (const auto& [group, members] : byGroup) {
         struct Pair {
             float ratio;
@@ -114,12 +142,12 @@ std::vector<std::vector<std::size_t>> trackBlades(const std::vector<BladeObserva
         std::vector<Pair> pairs;
         if (params.enabled)
             for (std::size_t t = 0; t < tracks.size(); ++t) {
-                const std::vector<glm::vec3> mean = trackPoints(observations, tracks[t], params);
-                const float trackLength = polylineLength_m(mean);
                 for (const std::size_t o : members) {
                     const Skeleton& s = observations[o].skeleton;
-                    const float length = std::min(trackLength, polylineLength_m(s.points_m));
-                    const float ratio = upperDistance_m(s.points_m, mean) / length;
+                    const float length = std::min(meanLengths[t], polylineLength_m(s.points_m));
+                    const float ratio =
+                        upperDistance_m(s.points_m, means[t], params.maxDistanceFraction * length) /
+                        length;
                     if (ratio <= params.maxDistanceFraction) pairs.push_back({ratio, o, t});
                 }
             }
@@ -131,6 +159,7 @@ std::vector<std::vector<std::size_t>> trackBlades(const std::vector<BladeObserva
             tracks[p.track].push_back(p.observation);
             lastGroup[p.track] = group;
             joined[p.observation] = 1;
+            refresh(p.track);
         }
         // Tracks open group by group, in observation order within a group: a capture of one
         // group lists its blades as the segmenter found them.
@@ -138,6 +167,9 @@ std::vector<std::vector<std::size_t>> trackBlades(const std::vector<BladeObserva
             if (!joined[o]) {
                 tracks.push_back({o});
                 lastGroup.push_back(group);
+                means.emplace_back();
+                meanLengths.push_back(0.f);
+                refresh(tracks.size() - 1);
             }
     }
     return tracks;
