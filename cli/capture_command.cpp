@@ -118,8 +118,7 @@ void addCaptureCommand(CLI::App& app) {
         "0.5 m, 0.24 at 0.8 m, 0 at 1.2 m). Aim the camera at the tuft from the side, its base in "
         "view: a camera a few centimetres above the ground, looking along it, can leave the ground "
         "unfitted. A still tuft is modelled better from more frames: record a dozen or more, and "
-        "each "
-        "blade becomes one archetype fitted to its views from every group of --fuse frames "
+        "each blade becomes one archetype fitted to its views from every group of --fuse frames "
         "(README, \"One archetype per blade\").");
     cmd->add_option("SOURCE", args->source,
                     "Recording folder, plain folder of 16-bit PNGs (with --intrinsics and "
