@@ -28,12 +28,14 @@ float segmentDistance_m(const glm::vec3& p, const glm::vec3& a, const glm::vec3&
     return glm::distance(p, a + t * ab);
 }
 
-// Mean distance of the shorter polyline's upper three quarters to the longer polyline, or +inf
-// as soon as that mean must exceed limit_m (most pairs are two different blades, far apart).
-float upperDistance_m(const std::vector<glm::vec3>& a, const std::vector<glm::vec3>& b,
+// Mean distance of the shorter polyline's upper three quarters to the longer polyline (lengths
+// given, as the caller has them), or +inf as soon as that mean must exceed limit_m (most pairs are
+// two different blades, far apart).
+float upperDistance_m(const std::vector<glm::vec3>& a, float lengthA_m,
+                      const std::vector<glm::vec3>& b, float lengthB_m,
                       float limit_m = std::numeric_limits<float>::infinity()) {
     if (a.size() < 2 || b.size() < 2) return std::numeric_limits<float>::infinity();
-    const bool aShorter = polylineLength_m(a) <= polylineLength_m(b);
+    const bool aShorter = lengthA_m <= lengthB_m;
     const std::vector<glm::vec3>& from = aShorter ? a : b;
     const std::vector<glm::vec3>& to = aShorter ? b : a;
     const std::size_t first = from.size() / 4;
@@ -79,20 +81,26 @@ std::vector<T> meanOf(const std::vector<const Skeleton*>& skeletons, Member memb
     return mean;
 }
 
-// The points of the track's members that its mean takes (membersForMean).
-std::vector<glm::vec3> trackPoints(const std::vector<BladeObservation>& observations,
-                                   const std::vector<std::size_t>& track,
-                                   const BladeTrackParams& params) {
+// The skeletons of the track's members that its mean takes (membersForMean).
+std::vector<const Skeleton*> skeletonsForMean(const std::vector<BladeObservation>& observations,
+                                              const std::vector<std::size_t>& track,
+                                              const BladeTrackParams& params) {
     std::vector<const Skeleton*> skeletons;
     for (const std::size_t i : membersForMean(observations, track, params))
         skeletons.push_back(&observations[i].skeleton);
-    return meanOf<glm::vec3>(skeletons, &Skeleton::points_m);
+    return skeletons;
 }
 
 }  // namespace
 
 float skeletonDistance_m(const Skeleton& a, const Skeleton& b) {
-    return upperDistance_m(a.points_m, b.points_m);
+    return upperDistance_m(a.points_m, polylineLength_m(a.points_m), b.points_m,
+                           polylineLength_m(b.points_m));
+}
+
+Skeleton trackSkeleton(const std::vector<BladeObservation>& observations,
+                       const std::vector<std::size_t>& track, const BladeTrackParams& params) {
+    return meanSkeleton(skeletonsForMean(observations, track, params));
 }
 
 std::vector<std::size_t> membersForMean(const std::vector<BladeObservation>& observations,
@@ -131,7 +139,9 @@ std::vector<std::vector<std::size_t>> trackBlades(const std::vector<BladeObserva
     std::vector<std::vector<glm::vec3>> means;
     std::vector<float> meanLengths;
     const auto refresh = [&](std::size_t t) {
-        means[t] = trackPoints(observations, tracks[t], params);
+        // Only the points: linking needs no more of the mean skeleton.
+        means[t] = meanOf<glm::vec3>(skeletonsForMean(observations, tracks[t], params),
+                                     &Skeleton::points_m);
         meanLengths[t] = polylineLength_m(means[t]);
     };
     for (const auto& [group, members] : byGroup) {
@@ -140,17 +150,21 @@ std::vector<std::vector<std::size_t>> trackBlades(const std::vector<BladeObserva
             std::size_t observation, track;
         };
         std::vector<Pair> pairs;
-        if (params.enabled)
-            for (std::size_t t = 0; t < tracks.size(); ++t) {
-                for (const std::size_t o : members) {
-                    const Skeleton& s = observations[o].skeleton;
-                    const float length = std::min(meanLengths[t], polylineLength_m(s.points_m));
+        if (params.enabled) {
+            std::vector<float> lengths;  // of this group's views, once for all tracks
+            for (const std::size_t o : members)
+                lengths.push_back(polylineLength_m(observations[o].skeleton.points_m));
+            for (std::size_t t = 0; t < tracks.size(); ++t)
+                for (std::size_t m = 0; m < members.size(); ++m) {
+                    const std::size_t o = members[m];
+                    const float length = std::min(meanLengths[t], lengths[m]);
                     const float ratio =
-                        upperDistance_m(s.points_m, means[t], params.maxDistanceFraction * length) /
+                        upperDistance_m(observations[o].skeleton.points_m, lengths[m], means[t],
+                                        meanLengths[t], params.maxDistanceFraction * length) /
                         length;
                     if (ratio <= params.maxDistanceFraction) pairs.push_back({ratio, o, t});
                 }
-            }
+        }
         std::stable_sort(pairs.begin(), pairs.end(),
                          [](const Pair& a, const Pair& b) { return a.ratio < b.ratio; });
         std::vector<char> joined(observations.size(), 0);

@@ -157,26 +157,20 @@ CaptureResult captureArchetypes(capture::DepthSource& source, const std::string&
     processGroup();
 
     for (const std::vector<std::size_t>& track : trackBlades(observations, options.tracks)) {
-        std::vector<const Skeleton*> skeletons;
-        Source src{sourceName, -1, 0, {}, {}};
-        for (const std::size_t i : membersForMean(observations, track, options.tracks))
-            skeletons.push_back(&observations[i].skeleton);
+        const Observed& first = observed[track.front()];
+        Source src{sourceName, first.sighting.frame, first.sighting.bladeId, {}, {}};
         for (const std::size_t i : track) {
             src.seenIn.push_back(observed[i].sighting);
             for (const std::string& flag : observed[i].flags)
                 if (std::find(src.flags.begin(), src.flags.end(), flag) == src.flags.end())
                     src.flags.push_back(flag);
         }
-        const Observed& first = observed[track.front()];
-        src.frame = first.sighting.frame;
-        src.bladeId = first.sighting.bladeId;
-        const std::string name =
-            "f" + std::to_string(src.frame) + "-b" + std::to_string(src.bladeId);
         try {
-            // The distance-transform width check reads the first observation's mask.
-            BladeFit fit = fitArchetype(meanSkeleton(skeletons), options.fit, src, first.mask,
-                                        &first.intrinsics, first.maskOrigin_px);
-            fit.archetype.name = name;
+            // Named f<frame>-b<blade> by its first view; the distance-transform width check reads
+            // that view's mask.
+            BladeFit fit =
+                fitArchetype(trackSkeleton(observations, track, options.tracks), options.fit, src,
+                             first.mask, &first.intrinsics, first.maskOrigin_px);
             result.library.archetypes.push_back(std::move(fit.archetype));
             summary.bladesModelled += static_cast<int>(track.size());
             summary.averagedArchetypes += track.size() > 1;

@@ -97,28 +97,26 @@ void measure(const std::string& preset, TipErrors& e) {
             truth.push_back(trueBladeOf(seg.blades[b], t.labels));
         }
     }
-    const auto tipError_mm = [&](const std::vector<const Skeleton*>& skeletons, int id) {
-        const BladeFit fit = fitArchetype(meanSkeleton(skeletons), params);
+    const auto tipError_mm = [&](const Skeleton& skeleton, int id) {
+        const BladeFit fit = fitArchetype(skeleton, params);
         const glm::vec3 trueTip =
             t.tuft.blades.at(static_cast<std::size_t>(id - 1)).spineInCamera_m().v2;
         return glm::distance(fit.spineCamera_m.v2, trueTip) * 1e3;
     };
     for (std::size_t i = 0; i < observations.size(); ++i)
         if (truth[i] != 0) {
-            const double d = tipError_mm({&observations[i].skeleton}, truth[i]);
+            const double d = tipError_mm(observations[i].skeleton, truth[i]);
             e.singleSq_mm2 += d * d, ++e.single;
         }
     const auto tracks = trackBlades(observations);
     e.trueBlades += static_cast<int>(t.tuft.blades.size());
     for (const auto& track : tracks) {
-        std::vector<const Skeleton*> skeletons;  // as capture averages them
-        for (const std::size_t i : membersForMean(observations, track))
-            skeletons.push_back(&observations[i].skeleton);
         bool oneBlade = truth[track.front()] != 0;
         for (const std::size_t i : track) oneBlade = oneBlade && truth[i] == truth[track.front()];
         e.tracksOfOneBlade += oneBlade && track.size() == kGroups;
         if (!oneBlade) continue;
-        const double d = tipError_mm(skeletons, truth[track.front()]);
+        // Fitted as capture fits a track.
+        const double d = tipError_mm(trackSkeleton(observations, track), truth[track.front()]);
         e.trackedSq_mm2 += d * d, ++e.tracked;
     }
     std::cout << preset << ": " << tracks.size() << " tracks of " << observations.size()

@@ -105,6 +105,8 @@ TEST(BladeTracks, AViewCutShortOrNotRootedJoinsItsBladeButNotItsMean) {
     ASSERT_EQ(tracks.size(), 1u);
     EXPECT_EQ(tracks[0], (std::vector<std::size_t>{0, 1, 2, 3}));
     EXPECT_EQ(membersForMean(obs, tracks[0]), (std::vector<std::size_t>{0, 2}));
+    EXPECT_EQ(trackSkeleton(obs, tracks[0]).points_m,
+              meanSkeleton({&obs[0].skeleton, &obs[2].skeleton}).points_m);
     // A track of one, or of views all cut alike, keeps them all.
     EXPECT_EQ(membersForMean(obs, {1}), (std::vector<std::size_t>{1}));
     EXPECT_EQ(membersForMean(obs, {0, 2}), (std::vector<std::size_t>{0, 2}));

@@ -20,7 +20,6 @@ namespace fs = std::filesystem;
 using modeling::BladeFit;
 using modeling::BladeObservation;
 using modeling::CaptureOptions;
-using modeling::Skeleton;
 
 const std::vector<int> kGroupCounts{1, 2, 4, 8};
 
@@ -67,17 +66,16 @@ std::vector<TrackedFit> fitTracks(const Observations& seen, const CaptureOptions
                                   const modeling::BladeTrackParams& tracks) {
     std::vector<TrackedFit> out;
     for (const auto& track : modeling::trackBlades(seen.observations, tracks)) {
-        std::vector<const Skeleton*> skeletons;
         std::map<int, int> votes;
-        for (const std::size_t i : modeling::membersForMean(seen.observations, track, tracks))
-            skeletons.push_back(&seen.observations[i].skeleton);
         for (const std::size_t i : track) ++votes[seen.trueIds[i]];
         int trueId = seen.trueIds[track.front()];
         for (const auto& [id, n] : votes)
             if (n > votes[trueId]) trueId = id;
         try {
-            out.push_back({modeling::fitArchetype(modeling::meanSkeleton(skeletons), options.fit),
-                           trueId, static_cast<int>(track.size())});
+            out.push_back(
+                {modeling::fitArchetype(modeling::trackSkeleton(seen.observations, track, tracks),
+                                        options.fit),
+                 trueId, static_cast<int>(track.size())});
         } catch (const modeling::ModelingError&) {
         }
     }

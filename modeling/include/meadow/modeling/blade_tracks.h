@@ -53,6 +53,11 @@ std::vector<std::size_t> membersForMean(const std::vector<BladeObservation>& obs
                                         const std::vector<std::size_t>& track,
                                         const BladeTrackParams& params = {});
 
+// The skeleton a track's archetype is fitted to: meanSkeleton of its membersForMean. Requires a
+// non-empty track.
+Skeleton trackSkeleton(const std::vector<BladeObservation>& observations,
+                       const std::vector<std::size_t>& track, const BladeTrackParams& params = {});
+
 // The point-by-point mean of skeletons with equal point counts (positions, widths, depths, the
 // pixel midline and across directions), with the added root and tip pieces' lengths and point
 // counts averaged, baseNotRooted and asymmetric by majority and the reasons of all, each once.
