@@ -6,6 +6,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "../../capture/src/segmentation/stages.h"
+#include "meadow/capture/error.h"
 #include "meadow/capture/segmenter.h"
 
 namespace meadow::capture {
@@ -14,6 +15,7 @@ namespace {
 namespace seg = segmentation;
 
 const cv::Size kFrame{160, 200};
+constexpr std::uint16_t kWall_mm = 1500;
 // The cleaned mask: an upright blade 8 px wide, rows 80-179, base at the bottom, narrowing over
 // its top 20 rows to a 2 px end at row 80 (columns 79-80), where its tip falls apart.
 const cv::Rect kBlade{76, 80, 8, 100};
@@ -56,7 +58,7 @@ void expectNotFollowed(const cv::Mat1b& readings, const std::string& why) {
     cv::Mat1b mask = bladeMask();
     const cv::Mat1b before = mask.clone();
     StageReport report;
-    const seg::TipTrails trails = seg::recoverTipTrails(readings, {}, mask, report);
+    const seg::TipTrails trails = seg::recoverTipTrails(readings, cv::Mat1b(), {}, mask, report);
     EXPECT_TRUE(trails.added.empty());
     EXPECT_EQ(cv::countNonZero(mask != before), 0);
     bool toldWhy = false;
@@ -69,7 +71,7 @@ TEST(TipTrails, DottedReadingsPastTheTipAreLinkedBackOnePixelWide) {
     cv::Mat1b readings = mask.clone();
     dotTip(readings, 40);  // 40 px of dotted tip above row 80
     StageReport report;
-    const seg::TipTrails trails = seg::recoverTipTrails(readings, {}, mask, report);
+    const seg::TipTrails trails = seg::recoverTipTrails(readings, cv::Mat1b(), {}, mask, report);
     // The blade now reaches the top dot, through one connected line of one pixel.
     EXPECT_TRUE(trails.holds({kColumn, 40}));
     EXPECT_EQ(mask(40, kColumn), 255);
@@ -110,9 +112,42 @@ TEST(TipTrails, ReadingsPastAGapWiderThanTipTrailGapAreLeftOut) {
     SegmenterParams params;
     ASSERT_LT(params.tipTrailGap_px, 5);
     StageReport report;
-    const seg::TipTrails trails = seg::recoverTipTrails(readings, params, mask, report);
+    const seg::TipTrails trails =
+        seg::recoverTipTrails(readings, cv::Mat1b(), params, mask, report);
     EXPECT_TRUE(trails.holds({kColumn, 60}));
     EXPECT_EQ(cv::countNonZero(mask.rowRange(0, 58)), 0);
+}
+
+TEST(TipTrails, ReadingsRecurringOverMoreFramesBridgeTheGapsOfThisFramesOwn) {
+    cv::Mat1b mask = bladeMask();
+    cv::Mat1b readings = mask.clone();
+    dotTip(readings, 60);                                          // rows 78..60
+    for (int y = 54; y >= 34; y -= 2) readings(y, kColumn) = 255;  // past a 5-row gap
+    // Readings recurring over a dozen frames fill the gap (every second row, as the tip reads).
+    cv::Mat1b recurring = cv::Mat1b::zeros(kFrame);
+    for (int y = 58; y >= 56; y -= 2) recurring(y, kColumn) = 255;
+    StageReport report;
+    const seg::TipTrails trails = seg::recoverTipTrails(readings, recurring, {}, mask, report);
+    EXPECT_TRUE(trails.holds({kColumn, 34}));
+    EXPECT_EQ(mask(34, kColumn), 255);
+    EXPECT_EQ(cv::countNonZero(mask.rowRange(0, 34)), 0);
+}
+
+TEST(TipTrails, HowRaggedTheEdgesAreIsMeasuredOnThisFramesOwnReadings) {
+    cv::Mat1b mask = bladeMask();
+    cv::Mat1b readings = mask.clone();
+    dotTip(readings, 40);
+    // Recurring readings all around the blade, 2-3 px out: they would read as far too ragged.
+    cv::Mat1b ring, inner;
+    cv::dilate(mask, ring, cv::getStructuringElement(cv::MORPH_RECT, {7, 7}));
+    cv::dilate(mask, inner, cv::Mat());
+    ring &= ~inner;
+    StageReport alone, withRing;
+    cv::Mat1b maskAlone = mask.clone();
+    const seg::TipTrails own = seg::recoverTipTrails(readings, cv::Mat1b(), {}, maskAlone, alone);
+    const seg::TipTrails both = seg::recoverTipTrails(readings, ring, {}, mask, withRing);
+    EXPECT_FLOAT_EQ(both.raggedness, own.raggedness);
+    EXPECT_LT(both.raggedness, SegmenterParams{}.tipTrailMaxRaggedness);
 }
 
 TEST(TipTrails, ReadingsThatRunAlongTheBladesSideAreNotATip) {
@@ -135,7 +170,7 @@ TEST(TipTrails, ATrailThatBendsBesideItsBladeEnclosesNoHole) {
     for (int x = kColumn + 2; x <= kColumn + 8; x += 2) readings(kBlade.y - 11, x) = 255;
     for (int y = kBlade.y - 9; y <= kBlade.y + 6; y += 2) readings(y, kColumn + 9) = 255;
     StageReport report;
-    const seg::TipTrails trails = seg::recoverTipTrails(readings, {}, mask, report);
+    const seg::TipTrails trails = seg::recoverTipTrails(readings, cv::Mat1b(), {}, mask, report);
     EXPECT_TRUE(trails.holds({kColumn, kBlade.y - 10}));
     EXPECT_EQ(enclosedHoles(mask), 0);
 }
@@ -164,7 +199,7 @@ TEST(TipTrails, SegmenterFollowsADottedTipAndSaysSo) {
     frame.intrinsics.height_px = kFrame.height;
     frame.intrinsics.cx_px = 79.5f;
     frame.intrinsics.cy_px = 99.5f;
-    frame.depth_mm = cv::Mat1w(kFrame, std::uint16_t{1500});
+    frame.depth_mm = cv::Mat1w(kFrame, kWall_mm);
     cv::Mat1b blade = bladeMask();
     dotTip(blade, 40);
     frame.depth_mm.setTo(800, blade);
@@ -179,6 +214,22 @@ TEST(TipTrails, SegmenterFollowsADottedTipAndSaysSo) {
     EXPECT_LE(b.contour_px[static_cast<size_t>(b.tipIndex)].y, 41) << found.summary();
     EXPECT_NEAR(found.tuftNearest_m, 0.8f, 1e-3f);
     EXPECT_NEAR(found.tuftFarthest_m, 0.8f, 1e-3f);
+
+    // Readings that recur over more frames carry the trail past this frame's last dot.
+    RecurringReadings tips;
+    tips.frames = 12;
+    tips.depth_mm = cv::Mat1w(kFrame, kWall_mm);
+    // (Up to row 34: a trail reaches at most tipTrailMaxLength_px, 48, past the mask's box.)
+    for (int y = 39; y >= 34; --y) tips.depth_mm(y, kColumn) = 801;
+    const Segmentation longer = Segmenter(params).segment(std::span(&frame, 1), tips);
+    ASSERT_EQ(longer.blades.size(), 1u) << longer.summary();
+    EXPECT_EQ(longer.recurringFrames, 12);
+    EXPECT_EQ(found.recurringFrames, 0);
+    const BladeContour& l = longer.blades.front();
+    EXPECT_TRUE(l.tipOnTrail);
+    EXPECT_LE(l.contour_px[static_cast<size_t>(l.tipIndex)].y, 35) << longer.summary();
+    tips.depth_mm = cv::Mat1w(kFrame.height + 1, kFrame.width, kWall_mm);
+    EXPECT_THROW((void)Segmenter(params).segment(std::span(&frame, 1), tips), CaptureError);
 
     params.tipTrailMinReach_px = 0.f;  // off: the blade ends at the cleaned mask
     const Segmentation cut = Segmenter(params).segment(frame);

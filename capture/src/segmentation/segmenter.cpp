@@ -187,8 +187,10 @@ struct Segmenter::Impl {
         out.report.push_back(std::move(r));
     }
 
+    // `recurring`: readings that recur over more frames than `depth_mm` fuses (may be empty);
+    // they join the tip trails' candidates only.
     Segmentation fromDepth(const cv::Mat1w& depth_mm, const Intrinsics& intrinsics,
-                           Segmentation out) const {
+                           Segmentation out, const cv::Mat1w& recurring = cv::Mat1w()) const {
         if (cv::countNonZero(depth_mm) == 0) {
             out.noBladesReason = "the frame has no depth readings (all pixels are 0)";
             out.clusterMask = cv::Mat1b::zeros(depth_mm.size());
@@ -212,10 +214,16 @@ struct Segmenter::Impl {
         } else {
             mask = depth_mm > 0;
         }
-        if (removePlanes)
+        const bool trails = params.tipTrailMinReach_px > 0.f;
+        // What the plane fit removes stays removed from the recurring readings too.
+        cv::Mat1b removedAsPlane;
+        if (removePlanes) {
+            if (trails && !recurring.empty()) removedAsPlane = mask.clone();
             stage(out, "plane removal", &mask, [&](StageReport& r) {
                 out.groundPlane = seg::removePlanes(depth_mm, intrinsics, params, mask, r);
             });
+            if (!removedAsPlane.empty()) removedAsPlane &= ~mask;
+        }
         if (!userBand) {
             stage(out, "depth band", &mask, [&](StageReport& r) {
                 band = seg::automaticDepthBand(depth_mm, mask, intrinsics, params,
@@ -244,22 +252,31 @@ struct Segmenter::Impl {
             out.tuftNearest_m = static_cast<float>(nearest_mm) / seg::kMillimetresPerMetre;
             out.tuftFarthest_m = static_cast<float>(farthest_mm) / seg::kMillimetresPerMetre;
         }
-        // Every in-band reading, for the tip trails the next stages would drop.
-        const cv::Mat1b inBand = params.tipTrailMinReach_px > 0.f ? mask.clone() : cv::Mat1b();
+        // Every in-band reading, for the tip trails the next stages would drop, and the in-band
+        // recurring readings besides.
+        const cv::Mat1b inBand = trails ? mask.clone() : cv::Mat1b();
+        cv::Mat1b recurringInBand;
+        if (trails && !recurring.empty()) {
+            StageReport unused;  // the band's own report is the depth band stage's
+            recurringInBand = seg::depthBandMask(recurring, band, unused);
+            if (!band.scenery.empty()) recurringInBand &= ~band.scenery;
+            if (!removedAsPlane.empty()) recurringInBand &= ~removedAsPlane;
+        }
         if (params.outlierMethod != OutlierMethod::None)
             stage(out, "outlier removal", &mask, [&](StageReport& r) {
                 seg::removeOutliers(depth_mm, intrinsics, params, mask, r);
             });
         return fromMask(std::move(mask), std::move(out), seg::SensedExtent::of(depth_mm), inBand,
-                        depth_mm);
+                        depth_mm, recurringInBand);
     }
 
     // `sensed`: where the sensor read anything (the whole frame for a given mask).
     // `readings`: the in-band readings before outlier removal, `depth_mm` the depth (both empty
-    // for a given mask).
+    // for a given mask); `recurring`: in-band readings recurring over more frames (may be empty).
     Segmentation fromMask(cv::Mat1b mask, Segmentation out, const seg::SensedExtent& sensed,
                           const cv::Mat1b& readings = cv::Mat1b(),
-                          const cv::Mat1w& depth_mm = cv::Mat1w()) const {
+                          const cv::Mat1w& depth_mm = cv::Mat1w(),
+                          const cv::Mat1b& recurring = cv::Mat1b()) const {
         // Clean-up and contours work inside the region the mask can reach, not the whole frame:
         // a tuft covers a small part of it, and the results are the same (cleanUpRegion).
         const cv::Rect cleaned = seg::cleanUpRegion(mask, params);
@@ -273,7 +290,7 @@ struct Segmenter::Impl {
         seg::TipTrails trails;
         if (!readings.empty())
             stage(out, "tip trails", &mask, [&](StageReport& r) {
-                trails = seg::recoverTipTrails(readings, params, mask, r);
+                trails = seg::recoverTipTrails(readings, recurring, params, mask, r);
                 region |= trails.box;
                 out.edgeRaggedness = trails.raggedness;
             });
@@ -337,6 +354,11 @@ Segmentation Segmenter::segment(const DepthFrame& frame) const {
 }
 
 Segmentation Segmenter::segment(std::span<const DepthFrame> frames) const {
+    return segment(frames, RecurringReadings{});
+}
+
+Segmentation Segmenter::segment(std::span<const DepthFrame> frames,
+                                const RecurringReadings& tips) const {
     if (frames.empty())
         throw CaptureError("Segmenter: no frames given; pass at least one depth frame");
     for (const auto& f : frames) {
@@ -348,13 +370,23 @@ Segmentation Segmenter::segment(std::span<const DepthFrame> frames) const {
                                std::to_string(frames[0].index) +
                                "; temporal fusion needs frames of one camera");
     }
-    if (frames.size() == 1) return segment(frames[0]);
+    if (!tips.depth_mm.empty() && tips.depth_mm.size() != frames[0].depth_mm.size())
+        throw CaptureError(
+            "Segmenter: the recurring readings are " + std::to_string(tips.depth_mm.cols) + "x" +
+            std::to_string(tips.depth_mm.rows) + " px but frame " +
+            std::to_string(frames[0].index) + " is " + std::to_string(frames[0].depth_mm.cols) +
+            "x" + std::to_string(frames[0].depth_mm.rows) +
+            "; take them over frames of the same camera");
     Segmentation out;
+    if (!tips.depth_mm.empty()) out.recurringFrames = tips.frames;
+    if (frames.size() == 1)
+        return impl_->fromDepth(frames[0].depth_mm, frames[0].intrinsics, std::move(out),
+                                tips.depth_mm);
     cv::Mat1w fused;
     impl_->stage(out, "temporal fusion", nullptr, [&](StageReport& r) {
         fused = seg::fuseFrames(frames, impl_->params.minValidFrameFraction, r);
     });
-    return impl_->fromDepth(fused, frames[0].intrinsics, std::move(out));
+    return impl_->fromDepth(fused, frames[0].intrinsics, std::move(out), tips.depth_mm);
 }
 
 Segmentation Segmenter::segmentMask(const cv::Mat1b& mask) const {

@@ -98,8 +98,11 @@ struct TipTrails {
         return box.contains(frame_px) && added(frame_px - box.tl()) != 0;
     }
 };
-TipTrails recoverTipTrails(const cv::Mat1b& candidates, const SegmenterParams& params,
-                           cv::Mat1b& mask, StageReport& report);
+// `recurring` (may be empty): in-band readings that recur over a longer run of frames
+// (recurring_readings.h); trails may run through them, but how ragged the edges are is measured
+// on `candidates` alone, this frame's own readings.
+TipTrails recoverTipTrails(const cv::Mat1b& candidates, const cv::Mat1b& recurring,
+                           const SegmenterParams& params, cv::Mat1b& mask, StageReport& report);
 
 // sensed_extent.cpp: per row and column, the first and last pixel with a reading, where the
 // sensor's band of no readings along an image border (at most a tenth of the frame) ends.

@@ -136,8 +136,8 @@ bool continuesTheMask(const cv::Mat1b& mask, cv::Point at, const std::vector<cv:
 
 }  // namespace
 
-TipTrails recoverTipTrails(const cv::Mat1b& candidates, const SegmenterParams& params,
-                           cv::Mat1b& mask, StageReport& report) {
+TipTrails recoverTipTrails(const cv::Mat1b& candidates, const cv::Mat1b& recurring,
+                           const SegmenterParams& params, cv::Mat1b& mask, StageReport& report) {
     if (!(params.tipTrailMinReach_px > 0.f) || candidates.empty()) return {};
     const cv::Rect maskBox = cv::boundingRect(mask);
     if (maskBox.empty()) {
@@ -150,6 +150,13 @@ TipTrails recoverTipTrails(const cv::Mat1b& candidates, const SegmenterParams& p
     cv::Mat1b inMask = mask(box);  // a view: what is set in it is set in `mask`
     cv::Mat1b loose;  // in-band readings off the mask: candidates minus mask (saturating)
     cv::subtract(candidates(box), inMask, loose);
+    cv::Mat1b own;  // this frame's own readings among them, for the raggedness
+    if (!recurring.empty()) {
+        own = loose.clone();
+        cv::Mat1b more;
+        cv::subtract(recurring(box), inMask, more);
+        loose |= more;
+    }
     if (cv::countNonZero(loose) == 0) {
         report.notes.push_back("every in-band reading is on the mask: no trail to follow");
         return {};
@@ -178,11 +185,16 @@ TipTrails recoverTipTrails(const cv::Mat1b& candidates, const SegmenterParams& p
     const cv::Mat1b near = reach - 1 == linkRadius_px ? touching : zone(reach - 1);
     // Trails start at readings near the mask that do not touch it.
     std::vector<cv::Point> seeds;
+    std::size_t ownSeeds = 0;
     for (int y = 0; y < box.height; ++y) {
         const std::uint8_t* l = loose[y];
         const std::uint8_t* t = touching[y];
+        const std::uint8_t* o = own.empty() ? l : own[y];
         for (int x = 0; x < box.width; ++x)
-            if (l[x] && t[x] && !adjacent({x, y})) seeds.emplace_back(x, y);
+            if (l[x] && t[x] && !adjacent({x, y})) {
+                seeds.emplace_back(x, y);
+                ownSeeds += o[x] != 0;
+            }
     }
     // How ragged the edges are: the share of the pixels 2 to linkRadius_px outside the mask
     // that hold an in-band reading (that band is about (linkRadius_px - 1) / linkRadius_px of
@@ -190,7 +202,7 @@ TipTrails recoverTipTrails(const cv::Mat1b& candidates, const SegmenterParams& p
     // ~20 %; then speckle chains reach as far as tips do and cannot be told from them.
     const double ringPixels = (cv::countNonZero(touching) - cv::countNonZero(inMask)) *
                               (linkRadius_px - 1.0) / linkRadius_px;
-    const double ragged = ringPixels > 0.0 ? static_cast<double>(seeds.size()) / ringPixels : 0.0;
+    const double ragged = ringPixels > 0.0 ? static_cast<double>(ownSeeds) / ringPixels : 0.0;
     TipTrails result;
     result.raggedness = static_cast<float>(ragged);
     if (ragged > params.tipTrailMaxRaggedness) {

@@ -26,6 +26,7 @@
 
 #include "meadow/capture/blade_contour.h"
 #include "meadow/capture/depth_frame.h"
+#include "meadow/capture/recurring_readings.h"
 
 namespace meadow::capture {
 
@@ -223,6 +224,9 @@ struct Segmentation {
     // mask that hold in-band readings (tip-trail stage; ~0.2 % without noise, 1-5 % at a
     // Kinect's nominal lateral noise, 11-33 % at 4x). 0 when not measured (segmentMask).
     float edgeRaggedness = 0.0f;
+    // Frames the tip trails' recurring readings were taken over (Segmenter::segment with
+    // RecurringReadings); 0 when the trails saw only this segmentation's own readings.
+    int recurringFrames = 0;
     // The ground the plane removal found, in camera space (metres): n.x + d = 0 with |n| = 1 and
     // n pointing up, away from the ground (n.x + d > 0 above it). Empty without a plane fit or
     // when no plane passed as ground.
@@ -246,6 +250,10 @@ public:
     // Temporal fusion: per-pixel median of the valid readings of a still tuft. All frames must
     // share size and intrinsics.
     [[nodiscard]] Segmentation segment(std::span<const DepthFrame> frames) const;
+    // The same, with readings that recur over a longer run of the still tuft's frames
+    // (recurring_readings.h) as further candidates for the tip trails (and for nothing else).
+    [[nodiscard]] Segmentation segment(std::span<const DepthFrame> frames,
+                                       const RecurringReadings& tips) const;
     // From a mask alone (no depth): clean-up, contours, partition and flags.
     [[nodiscard]] Segmentation segmentMask(const cv::Mat1b& mask) const;
 
