@@ -178,12 +178,26 @@ void addCaptureCommand(CLI::App& app) {
         ->check(CLI::Range(0.f, 20.f));
     cmd->add_flag_callback(
         "--per-group", [args] { args->options.tracks.enabled = false; },
-        "One archetype per blade and fused group, for a tuft or camera that moves between groups. "
+        "One archetype per blade and fused group, for a tuft or camera that moves between groups "
+        "(with --recurring-frames 0). "
         "By default a blade seen in several groups (its skeletons within " +
             std::to_string(static_cast<int>(
                 std::lround(100.f * modeling::BladeTrackParams{}.maxDistanceFraction))) +
             " % of its length of each other) is fitted once, to the mean of its skeletons, which "
             "lies nearer the blade than any one of them (README, \"One archetype per blade\")");
+    cmd->add_option(
+           "--recurring-frames", args->options.recurringFrames,
+           "Tip trails also follow readings that recur (in " +
+               std::to_string(std::lround(100.f * capture::RecurringParams{}.minShare)) +
+               " % of the frames, at least " +
+               std::to_string(capture::RecurringParams{}.minFrames) + ", within " +
+               std::to_string(capture::RecurringParams{}.agreement_mm) +
+               " mm) over this many frames of a still tuft, where a thin tip is read a few "
+               "times in different pixels; 0 = each group's own readings only, as for a tuft "
+               "that moves (with --per-group). Needs a recording of at least this many frames "
+               "(README, \"Tips from readings that recur over frames\")")
+        ->capture_default_str()
+        ->check(CLI::Range(0, 1024));
     cmd->add_flag(
         "--keep-flagged", args->options.keepFlagged,
         "Also model blades the segmenter flagged (overlapping, curling, too thin, base hidden)");

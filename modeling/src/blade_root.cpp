@@ -198,7 +198,10 @@ Skeleton segmentedBladeSkeleton(const capture::Segmentation& segmentation, std::
         TipParams tip = params.tip;
         if (blade.tipOnTrail) {
             if (tip.toEndOnTrail) tip.widthFitTo = 1.f;
-            tip.maxExtensionFraction = std::min(tip.maxExtensionFraction, tip.maxExtensionOnTrail);
+            tip.maxExtensionFraction =
+                std::min(tip.maxExtensionFraction, segmentation.recurringFrames > 0
+                                                       ? tip.maxExtensionOnRecurringTrail
+                                                       : tip.maxExtensionOnTrail);
         }
         extendSkeletonTip(skeleton, tip);
     }

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <deque>
+#include <span>
 
 #include "meadow/modeling/archetype_merge.h"
 #include "meadow/modeling/error.h"
@@ -79,10 +81,20 @@ std::string skippedSummary(const CaptureSummary& summary) {
     return m;
 }
 
+int segmentationWindow(const CaptureOptions& options) {
+    const int fusion = std::max(1, options.fusionFrames);
+    return options.recurringFrames > 0 ? (options.recurringFrames + fusion - 1) / fusion * fusion
+                                       : fusion;
+}
+
 CaptureResult captureArchetypes(capture::DepthSource& source, const std::string& sourceName,
                                 const CaptureOptions& options, const CaptureProgress& progress) {
     if (options.fusionFrames < 1)
         throw std::invalid_argument("captureArchetypes: fusionFrames must be >= 1");
+    if (options.recurringFrames < 0)
+        throw std::invalid_argument("captureArchetypes: recurringFrames must be >= 0");
+    if (const std::string why = options.recurring.problem(); !why.empty())
+        throw std::invalid_argument("captureArchetypes: " + why);
     const capture::Segmenter segmenter(options.segmenter);
     CaptureResult result;
     result.library.generator = "meadow capture 0.1.0";
@@ -96,10 +108,16 @@ CaptureResult captureArchetypes(capture::DepthSource& source, const std::string&
     // Every trustworthy blade of every group, as a skeleton; fitted once per track at the end.
     std::vector<BladeObservation> observations;
     std::vector<Observed> observed;  // parallel: what the fit needs beyond the skeleton
-    std::vector<capture::DepthFrame> group;
+    // Frames are segmented a window at a time: groups of fusionFrames, whose tip trails also
+    // see the readings that recur over the window (when it is long enough).
+    const int window = segmentationWindow(options);
+    std::deque<capture::DepthFrame> recent;  // the last `window` frames read
+    std::size_t pending = 0;                 // of them, not yet segmented
+    std::span<const capture::DepthFrame> group;
+    capture::RecurringReadings tips;
     const auto processGroup = [&] {
         if (group.empty()) return;
-        const capture::Segmentation seg = segmenter.segment(group);
+        const capture::Segmentation seg = segmenter.segment(group, tips);
         const int groupIndex = summary.segmentations++;
         const int frameIndex = group.front().index;
         if (!options.debugDir.empty())
@@ -143,18 +161,34 @@ CaptureResult captureArchetypes(capture::DepthSource& source, const std::string&
                 summary.notes.push_back(where + " not modelled: " + e.what());
             }
         }
-        group.clear();
+    };
+    const auto processPending = [&] {
+        if (pending == 0) return;
+        const std::vector<capture::DepthFrame> frames(recent.begin(), recent.end());
+        tips = options.recurringFrames > 0 &&
+                       static_cast<int>(frames.size()) >= options.recurringFrames
+                   ? capture::recurringReadings(frames, options.recurring)
+                   : capture::RecurringReadings{};
+        const auto fusion = static_cast<std::size_t>(options.fusionFrames);
+        for (std::size_t first = frames.size() - pending; first < frames.size(); first += fusion) {
+            group = std::span<const capture::DepthFrame>(frames).subspan(
+                first, std::min(fusion, frames.size() - first));
+            processGroup();
+        }
+        group = {};
+        pending = 0;
     };
 
     while (total <= 0 || summary.framesRead < total) {
         auto frame = source.next();
         if (!frame) break;
         ++summary.framesRead;
-        group.push_back(std::move(*frame));
-        if (static_cast<int>(group.size()) == options.fusionFrames) processGroup();
+        recent.push_back(std::move(*frame));
+        if (static_cast<int>(recent.size()) > window) recent.pop_front();
+        if (static_cast<int>(++pending) == window) processPending();
         if (progress) progress(summary.framesRead, std::max(total, summary.framesRead));
     }
-    processGroup();
+    processPending();
 
     for (const std::vector<std::size_t>& track : trackBlades(observations, options.tracks)) {
         const Observed& first = observed[track.front()];

@@ -40,10 +40,25 @@ Observations observe(const capture::Segmenter& segmenter, const Scene& scene,
                      const CaptureOptions& options, int groups) {
     Observations out;
     const auto frames = static_cast<std::size_t>(options.fusionFrames);
+    const auto window = static_cast<std::size_t>(modeling::segmentationWindow(options));
+    const std::size_t read = static_cast<std::size_t>(groups) * frames;
+    capture::RecurringReadings tips;
     for (int g = 0; g < groups; ++g) {
-        const std::span<const capture::DepthFrame> group(
-            scene.frames.data() + static_cast<std::size_t>(g) * frames, frames);
-        const capture::Segmentation seg = segmenter.segment(group);
+        const std::size_t first = static_cast<std::size_t>(g) * frames;
+        // As captureArchetypes reads them: a window at a time, each window's groups with the
+        // readings recurring over its last `window` frames.
+        if (first % window == 0) {
+            const std::size_t end = std::min(read, first + window);
+            tips = options.recurringFrames > 0 &&
+                           end >= static_cast<std::size_t>(options.recurringFrames)
+                       ? capture::recurringReadings(
+                             std::span(scene.frames)
+                                 .subspan(end - std::min(end, window), std::min(end, window)),
+                             options.recurring)
+                       : capture::RecurringReadings{};
+        }
+        const std::span<const capture::DepthFrame> group(scene.frames.data() + first, frames);
+        const capture::Segmentation seg = segmenter.segment(group, tips);
         const BladeMatch match = matchBlades(scene.labels, seg.blades);
         for (std::size_t b = 0; b < seg.blades.size(); ++b) {
             const auto& flags = seg.blades[b].flags;
