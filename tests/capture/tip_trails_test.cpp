@@ -38,6 +38,14 @@ void dotTip(cv::Mat1b& readings, int top, int column = kColumn) {
     for (int y = kBlade.y - 2; y >= top; y -= 2) readings(y, column) = 255;
 }
 
+// The pixels 2-3 px outside `mask` (chessboard distance), where lateral noise leaves speckle.
+cv::Mat1b ringAround(const cv::Mat1b& mask) {
+    cv::Mat1b ring, inner;
+    cv::dilate(mask, ring, cv::getStructuringElement(cv::MORPH_RECT, {7, 7}));
+    cv::dilate(mask, inner, cv::Mat());
+    return ring & ~inner;
+}
+
 // 4-connected background regions that touch no side of the frame.
 int enclosedHoles(const cv::Mat1b& mask) {
     cv::Mat1i labels;
@@ -138,10 +146,7 @@ TEST(TipTrails, HowRaggedTheEdgesAreIsMeasuredOnThisFramesOwnReadings) {
     cv::Mat1b readings = mask.clone();
     dotTip(readings, 40);
     // Recurring readings all around the blade, 2-3 px out: they would read as far too ragged.
-    cv::Mat1b ring, inner;
-    cv::dilate(mask, ring, cv::getStructuringElement(cv::MORPH_RECT, {7, 7}));
-    cv::dilate(mask, inner, cv::Mat());
-    ring &= ~inner;
+    const cv::Mat1b ring = ringAround(mask);
     StageReport alone, withRing;
     cv::Mat1b maskAlone = mask.clone();
     const seg::TipTrails own = seg::recoverTipTrails(readings, cv::Mat1b(), {}, maskAlone, alone);
@@ -180,10 +185,7 @@ TEST(TipTrails, NotFollowedWhereEdgesAreTooRagged) {
     cv::Mat1b readings = mask.clone();
     dotTip(readings, 40);
     // Readings on every third pixel 2-3 px outside the blade: noise far above nominal.
-    cv::Mat1b ring, inner;
-    cv::dilate(mask, ring, cv::getStructuringElement(cv::MORPH_RECT, {7, 7}));
-    cv::dilate(mask, inner, cv::Mat());
-    ring &= ~inner;
+    const cv::Mat1b ring = ringAround(mask);
     int k = 0;
     for (int y = 0; y < ring.rows; ++y)
         for (int x = 0; x < ring.cols; ++x)
