@@ -119,7 +119,9 @@ void addCaptureCommand(CLI::App& app) {
         "view: a camera a few centimetres above the ground, looking along it, can leave the ground "
         "unfitted. A still tuft is modelled better from more frames: record a dozen or more, and "
         "each blade becomes one archetype fitted to its views from every group of --fuse frames "
-        "(README, \"One archetype per blade\").");
+        "(README, \"One archetype per blade\"), and thin tips are followed through the readings "
+        "that recur over --recurring-frames frames. For a tuft that moves, pass --per-group "
+        "--recurring-frames 0.");
     cmd->add_option("SOURCE", args->source,
                     "Recording folder, plain folder of 16-bit PNGs (with --intrinsics and "
                     "--depth-unit), .oni file, or openni:// for a live camera")

@@ -194,11 +194,20 @@ TEST(CaptureCli, ABandWithOneEdgeOrEdgesSwappedIsAUsageErrorNamingTheOptions) {
     }
 }
 
+TEST(CaptureCli, ANegativeRecurringFrameCountIsAUsageErrorNamingTheOption) {
+    const fs::path dir = freshTempDir("capture_recurring");
+    const auto r = runMeadow("capture " + (dir / "rec").string() + " --recurring-frames -1 --out " +
+                             (dir / "lib.json").string());
+    EXPECT_EQ(r.exitCode, 2) << r.output;
+    EXPECT_NE(r.output.find("--recurring-frames"), std::string::npos) << r.output;
+    EXPECT_FALSE(fs::exists(dir / "lib.json"));
+}
+
 TEST(CaptureCli, HelpExplainsTheOptionsAndDefaults) {
     const auto r = runMeadow("capture --help");
     EXPECT_EQ(r.exitCode, 0);
-    for (const char* option :
-         {"--out", "--glb", "--debug", "--fuse", "--max-archetypes", "--tolerance-mm", "--plane"})
+    for (const char* option : {"--out", "--glb", "--debug", "--fuse", "--max-archetypes",
+                               "--tolerance-mm", "--plane", "--recurring-frames"})
         EXPECT_NE(r.output.find(option), std::string::npos) << option << " missing from:\n"
                                                             << r.output;
     // Where capture works is part of how to use it (README, "Segmentation over camera distance").
