@@ -226,6 +226,9 @@ TEST(TipTrails, SegmenterFollowsADottedTipAndSaysSo) {
     const Segmentation longer = Segmenter(params).segment(std::span(&frame, 1), tips);
     ASSERT_EQ(longer.blades.size(), 1u) << longer.summary();
     EXPECT_EQ(longer.recurringFrames, 12);
+    EXPECT_NE(longer.summary().find("px of in-band readings that recur over 12 frames"),
+              std::string::npos)
+        << longer.summary();
     EXPECT_EQ(found.recurringFrames, 0);
     const BladeContour& l = longer.blades.front();
     EXPECT_TRUE(l.tipOnTrail);

@@ -290,6 +290,11 @@ struct Segmenter::Impl {
         seg::TipTrails trails;
         if (!readings.empty())
             stage(out, "tip trails", &mask, [&](StageReport& r) {
+                if (!recurring.empty())
+                    r.notes.push_back(std::to_string(cv::countNonZero(recurring & ~readings)) +
+                                      " px of in-band readings that recur over " +
+                                      std::to_string(out.recurringFrames) +
+                                      " frames join this segmentation's own as trail candidates");
                 trails = seg::recoverTipTrails(readings, recurring, params, mask, r);
                 region |= trails.box;
                 out.edgeRaggedness = trails.raggedness;
