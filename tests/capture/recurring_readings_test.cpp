@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <opencv2/core.hpp>
 #include <vector>
 
@@ -57,6 +58,46 @@ TEST(RecurringReadings, PixelsWithoutReadingsDoNotCount) {
     std::vector<DepthFrame> f = frames(12, {800, 802, 801});
     for (std::size_t i = 3; i < f.size(); ++i) f[i].depth_mm(kTip) = 0;
     EXPECT_EQ(recurringReadings(f).depth_mm(kTip), 801);
+}
+
+// The image-wide sort against the plain per-pixel definition, on frames of random readings:
+// clusters at a few depths, scattered ones and gaps, for 5, 12 and 17 frames.
+TEST(RecurringReadings, MatchesThePerPixelDefinition) {
+    cv::RNG rng(7);
+    for (const int count : {5, 12, 17}) {
+        std::vector<DepthFrame> f(static_cast<std::size_t>(count));
+        for (auto& frame : f) {
+            frame.depth_mm = cv::Mat1w(24, 32);
+            for (auto& d : frame.depth_mm) {
+                const int kind = rng.uniform(0, 4);
+                d = kind == 0   ? 0
+                    : kind == 1 ? static_cast<std::uint16_t>(rng.uniform(500, 2000))
+                                : static_cast<std::uint16_t>(700 * kind + rng.uniform(-8, 9));
+            }
+        }
+        const RecurringParams params;
+        const RecurringReadings r = recurringReadings(f, params);
+        const auto needed = static_cast<std::size_t>(r.neededFrames);
+        int recurring = 0;
+        for (int y = 0; y < 24; ++y)
+            for (int x = 0; x < 32; ++x) {
+                std::vector<std::uint16_t> v;
+                for (const auto& frame : f)
+                    if (frame.depth_mm(y, x) != 0) v.push_back(frame.depth_mm(y, x));
+                std::sort(v.begin(), v.end());
+                std::uint16_t expected = 0;
+                for (std::size_t i = 0; i + needed <= v.size(); ++i)
+                    if (v[i + needed - 1] - v[i] <= params.agreement_mm) {
+                        expected = v[i + (needed - 1) / 2];
+                        break;
+                    }
+                recurring += expected != 0;
+                ASSERT_EQ(r.depth_mm(y, x), expected)
+                    << count << " frames, pixel " << x << ", " << y;
+            }
+        EXPECT_EQ(r.recurringPixels, recurring);
+        EXPECT_GT(recurring, 0);
+    }
 }
 
 TEST(RecurringReadings, BadInputIsOneClearError) {

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <opencv2/core.hpp>
 #include <vector>
 
 #include "meadow/capture/error.h"
@@ -12,7 +13,10 @@ namespace meadow::capture {
 
 namespace {
 constexpr int kMaxAgreement_mm = 1000;
-}
+// Stands for "no reading" while sorting: farther than any depth a uint16 millimetre frame holds
+// but this one, which no sensor reports.
+constexpr std::uint16_t kNoReading = 0xffff;
+}  // namespace
 
 std::string RecurringParams::problem() const {
     if (!std::isfinite(minShare) || minShare < 0.f || minShare > 1.f)
@@ -45,28 +49,46 @@ RecurringReadings recurringReadings(std::span<const DepthFrame> frames,
     out.depth_mm = cv::Mat1w(size, std::uint16_t{0});
     const auto needed = static_cast<std::size_t>(out.neededFrames);
     if (needed > frames.size()) return out;  // too few frames for anything to recur
-    std::vector<std::uint16_t> values;
-    values.reserve(frames.size());
-    std::vector<const std::uint16_t*> rows(frames.size());
-    for (int y = 0; y < size.height; ++y) {
-        for (std::size_t i = 0; i < frames.size(); ++i) rows[i] = frames[i].depth_mm[y];
-        std::uint16_t* result = out.depth_mm[y];
-        for (int x = 0; x < size.width; ++x) {
-            values.clear();
-            for (const std::uint16_t* row : rows)
-                if (row[x] != 0) values.push_back(row[x]);
-            if (values.size() < needed) continue;
-            std::sort(values.begin(), values.end());
-            // The nearest run of `needed` readings that agree: a tip in front of the wall is the
-            // nearer surface, and the wall's readings agree with one another too.
-            for (std::size_t i = 0; i + needed <= values.size(); ++i)
-                if (values[i + needed - 1] - values[i] <= params.agreement_mm) {
-                    result[x] = values[i + (needed - 1) / 2];
-                    ++out.recurringPixels;
-                    break;
-                }
-        }
+    // Sorted per pixel, nearest first, by a sorting network over whole images (Batcher's
+    // odd-even merge sort, each comparator an element-wise min and max): the per-pixel sort it
+    // replaced cost 30 ms for 12 frames at 640x480, five times this. No reading sorts last.
+    const std::size_t n = frames.size();
+    std::vector<cv::Mat> sorted(
+        n);  // cv::Mat, not Mat1w: std::min would take a Mat1w for a comparator
+    for (std::size_t i = 0; i < n; ++i) {
+        sorted[i] = frames[i].depth_mm.clone();
+        sorted[i].setTo(kNoReading, frames[i].depth_mm == 0);
     }
+    cv::Mat low, high;
+    const auto exchange = [&](std::size_t a, std::size_t b) {
+        cv::min(sorted[a], sorted[b], low);
+        cv::max(sorted[a], sorted[b], high);
+        std::swap(sorted[a], low);
+        std::swap(sorted[b], high);
+    };
+    std::size_t padded = 1;
+    while (padded < n) padded <<= 1;
+    // Comparators that touch the padding (no reading, already last) change nothing: skipped.
+    for (std::size_t p = 1; p < padded; p <<= 1)
+        for (std::size_t k = p; k >= 1; k >>= 1)
+            for (std::size_t j = k % p; j + k < padded; j += 2 * k)
+                for (std::size_t i = 0; i < std::min(k, padded - j - k); ++i)
+                    if ((i + j) / (2 * p) == (i + j + k) / (2 * p) && i + j + k < n)
+                        exchange(i + j, i + j + k);
+    // The nearest run of `needed` readings that agree: a tip in front of the wall is the nearer
+    // surface, and the wall's readings agree with one another too. Runs are tried farthest first
+    // so that the nearest one that agrees is written last.
+    cv::Mat spread;
+    cv::Mat1b agree, read;
+    for (std::size_t i = n - needed + 1; i-- > 0;) {
+        const cv::Mat& last = sorted[i + needed - 1];
+        cv::subtract(last, sorted[i], spread);
+        cv::compare(spread, params.agreement_mm, agree, cv::CMP_LE);
+        cv::compare(last, kNoReading, read, cv::CMP_NE);
+        agree &= read;
+        sorted[i + (needed - 1) / 2].copyTo(out.depth_mm, agree);
+    }
+    out.recurringPixels = cv::countNonZero(out.depth_mm);
     return out;
 }
 
