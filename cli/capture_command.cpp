@@ -199,7 +199,7 @@ void addCaptureCommand(CLI::App& app) {
                "that moves (with --per-group). Needs a recording of at least this many frames "
                "(README, \"Tips from readings that recur over frames\")")
         ->capture_default_str()
-        ->check(CLI::Range(0, 1024));
+        ->check(CLI::Range(0, 64));
     cmd->add_flag(
         "--keep-flagged", args->options.keepFlagged,
         "Also model blades the segmenter flagged (overlapping, curling, too thin, base hidden)");

@@ -7,6 +7,7 @@
 #include <map>
 
 #include "meadow/capture/frame_memory.h"
+#include "meadow/capture/recurring_readings.h"
 #include "meadow/capture/segmenter.h"
 #include "segmentation/drawn_tuft.h"
 
@@ -102,6 +103,40 @@ void BM_TemporalFusion5(benchmark::State& state) {
     }
 }
 
+// What capture adds per window of 12 frames (CaptureOptions::recurringFrames): the recurring
+// readings over them, and a fused group of 3 segmented with and without them.
+std::vector<DepthFrame> twelveFrames() {
+    std::vector<DepthFrame> frames;
+    for (unsigned i = 0; i < 12; ++i)
+        frames.push_back(drawn::draw(drawn::fan(9, 65.f), {.sigma_mm = 3.f,
+                                                           .dropoutRate = 0.1f,
+                                                           .flyingPixelRate = 0.3f,
+                                                           .lateralJitter_px = 1,
+                                                           .seed = 40 + i})
+                             .frame);
+    return frames;
+}
+
+void BM_RecurringReadings12(benchmark::State& state) {
+    const std::vector<DepthFrame> frames = twelveFrames();
+    for (auto _ : state) {
+        const RecurringReadings r = recurringReadings(frames);
+        benchmark::DoNotOptimize(r.depth_mm.data);
+    }
+}
+
+void BM_FusedGroupOf3(benchmark::State& state) {
+    const std::vector<DepthFrame> frames = twelveFrames();
+    const RecurringReadings tips = state.range(0) ? recurringReadings(frames) : RecurringReadings{};
+    const Segmenter segmenter(userBand(PlaneMethod::None));
+    const std::span<const DepthFrame> group(frames.data(), 3);
+    for (auto _ : state) {
+        const Segmentation s = segmenter.segment(group, tips);
+        benchmark::DoNotOptimize(s.blades.data());
+    }
+    state.SetLabel(state.range(0) ? "with recurring readings" : "own readings");
+}
+
 BENCHMARK(BM_FrontEnd_UserBand_NoPcl)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_FrontEnd_UserBand_NoPcl_StatisticalOutliers)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_FrontEnd_UserBand_Ransac)->Unit(benchmark::kMillisecond);
@@ -111,6 +146,8 @@ BENCHMARK(BM_FrontEnd_AutoBand_OrganizedMultiPlane)->Unit(benchmark::kMillisecon
 BENCHMARK(BM_FrontEnd_AutoBand_Default)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_MaskToBlades)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_TemporalFusion5)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_RecurringReadings12)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_FusedGroupOf3)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
 
 }  // namespace
 
