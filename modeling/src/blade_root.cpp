@@ -104,8 +104,7 @@ void rootSkeleton(Skeleton& s, const ClusterBase& base, const RootParams& params
     const int n = static_cast<int>(s.points_m.size());
     if (n < 3 || s.midline_px.size() != s.points_m.size() || s.width_m.size() != s.points_m.size())
         throw std::invalid_argument("rootSkeleton: need a lifted skeleton with >= 3 points");
-    float length_m = 0.f;
-    for (int i = 1; i < n; ++i) length_m += glm::distance(s.points_m[i - 1], s.points_m[i]);
+    const float length_m = detail::polylineLength_m(s.points_m);
     const glm::vec3 lower = s.points_m.front();
     const float extension_m = glm::distance(base.base_m, lower);
     const int k = std::clamp(

@@ -10,23 +10,13 @@
 #include <map>
 #include <stdexcept>
 
+#include "chain_resample.h"
+#include "meadow/modeling/hausdorff.h"
+
 namespace meadow::modeling {
 namespace {
 
-float polylineLength_m(const std::vector<glm::vec3>& points) {
-    float length = 0.f;
-    for (std::size_t j = 1; j < points.size(); ++j)
-        length += glm::distance(points[j - 1], points[j]);
-    return length;
-}
-
-// Distance from p to the segment ab.
-float segmentDistance_m(const glm::vec3& p, const glm::vec3& a, const glm::vec3& b) {
-    const glm::vec3 ab = b - a;
-    const float len2 = glm::dot(ab, ab);
-    const float t = len2 > 0.f ? std::clamp(glm::dot(p - a, ab) / len2, 0.f, 1.f) : 0.f;
-    return glm::distance(p, a + t * ab);
-}
+using detail::polylineLength_m;
 
 // Mean distance of the shorter polyline's upper three quarters to the longer polyline (lengths
 // given, as the caller has them), or +inf as soon as that mean must exceed limit_m (most pairs are
@@ -59,7 +49,7 @@ float upperDistance_m(const std::vector<glm::vec3>& a, float lengthA_m,
         const std::size_t end = j == first ? to.size() : std::min(to.size(), last + kAhead);
         float nearest = std::numeric_limits<float>::infinity();
         for (std::size_t k = begin; k < end; ++k)
-            if (const float d = segmentDistance_m(from[j], to[k - 1], to[k]); d < nearest)
+            if (const float d = pointSegmentDistance_m(from[j], to[k - 1], to[k]); d < nearest)
                 nearest = d, last = k;
         sum += nearest;
         if (sum > budget) return std::numeric_limits<float>::infinity();

@@ -1,6 +1,7 @@
 #pragma once
 // Resampling of a skeleton's per-point sequences by 3D arc length (blade_root.cpp, blade_tip.cpp):
-// stations are computed once on the points, then every sequence is sampled at them.
+// stations are computed once on the points, then every sequence is sampled at them. And the
+// polyline's length (blade_root.cpp, blade_tracks.cpp).
 #include <algorithm>
 #include <cstddef>
 #include <glm/geometric.hpp>
@@ -9,6 +10,13 @@
 #include <vector>
 
 namespace meadow::modeling::detail {
+
+// Length of a polyline (0 for fewer than two points).
+inline float polylineLength_m(const std::vector<glm::vec3>& p) {
+    float length = 0.f;
+    for (std::size_t i = 1; i < p.size(); ++i) length += glm::distance(p[i - 1], p[i]);
+    return length;
+}
 
 // Position (segment index, fraction) of n points evenly spaced by arc length along a polyline.
 inline std::vector<std::pair<std::size_t, float>> arcLengthStations(const std::vector<glm::vec3>& p,
