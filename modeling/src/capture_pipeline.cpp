@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cstdio>
 #include <deque>
-#include <span>
 
 #include "meadow/modeling/archetype_merge.h"
 #include "meadow/modeling/error.h"
@@ -87,6 +86,14 @@ int segmentationWindow(const CaptureOptions& options) {
                                        : fusion;
 }
 
+capture::RecurringReadings recurringReadingsOfRun(const CaptureOptions& options,
+                                                  std::span<const capture::DepthFrame> lastFrames) {
+    if (options.recurringFrames <= 0 ||
+        lastFrames.size() < static_cast<std::size_t>(options.recurringFrames))
+        return {};
+    return capture::recurringReadings(lastFrames, options.recurring);
+}
+
 CaptureResult captureArchetypes(capture::DepthSource& source, const std::string& sourceName,
                                 const CaptureOptions& options, const CaptureProgress& progress) {
     if (options.fusionFrames < 1)
@@ -165,10 +172,7 @@ CaptureResult captureArchetypes(capture::DepthSource& source, const std::string&
     const auto processPending = [&] {
         if (pending == 0) return;
         const std::vector<capture::DepthFrame> frames(recent.begin(), recent.end());
-        tips = options.recurringFrames > 0 &&
-                       static_cast<int>(frames.size()) >= options.recurringFrames
-                   ? capture::recurringReadings(frames, options.recurring)
-                   : capture::RecurringReadings{};
+        tips = recurringReadingsOfRun(options, frames);
         const auto fusion = static_cast<std::size_t>(options.fusionFrames);
         for (std::size_t first = frames.size() - pending; first < frames.size(); first += fusion) {
             group = std::span<const capture::DepthFrame>(frames).subspan(

@@ -49,13 +49,9 @@ Observations observe(const capture::Segmenter& segmenter, const Scene& scene,
         // readings recurring over its last `window` frames.
         if (first % window == 0) {
             const std::size_t end = std::min(read, first + window);
-            tips = options.recurringFrames > 0 &&
-                           end >= static_cast<std::size_t>(options.recurringFrames)
-                       ? capture::recurringReadings(
-                             std::span(scene.frames)
-                                 .subspan(end - std::min(end, window), std::min(end, window)),
-                             options.recurring)
-                       : capture::RecurringReadings{};
+            tips = modeling::recurringReadingsOfRun(
+                options, std::span(scene.frames)
+                             .subspan(end - std::min(end, window), std::min(end, window)));
         }
         const std::span<const capture::DepthFrame> group(scene.frames.data() + first, frames);
         const capture::Segmentation seg = segmenter.segment(group, tips);

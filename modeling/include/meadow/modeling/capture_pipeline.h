@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <functional>
 #include <map>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -69,6 +70,11 @@ using CaptureProgress = std::function<void(int framesDone, int framesTotal)>;
 // a run are taken over its last that many frames, and only when the source held at least
 // recurringFrames frames by then.
 int segmentationWindow(const CaptureOptions& options);
+// The recurring readings captureArchetypes gives the groups of a run, taken over `lastFrames`
+// (the last segmentationWindow frames read, or all of them when fewer): empty when
+// recurringFrames is 0 or lastFrames holds fewer frames than it.
+capture::RecurringReadings recurringReadingsOfRun(const CaptureOptions& options,
+                                                  std::span<const capture::DepthFrame> lastFrames);
 
 // Throws ModelingError when no blade could be modelled (the message carries the reasons), and
 // the source's CaptureError for unreadable input.
