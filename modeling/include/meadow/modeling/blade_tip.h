@@ -41,8 +41,9 @@ struct TipParams {
     // - 0.05 / 0.05: 7.1 / 6.7 / 7.1
     float maxExtensionFraction = 0.1f;
     float maxExtensionOnTrail = 0.05f;
-    // A trail that also ran through readings recurring over a dozen frames
-    // (Segmentation::recurringFrames > 0) reaches nearer the tip: it gets this cap instead.
+    // Where the segmenter's trails could also run through readings recurring over a dozen
+    // frames (Segmentation::recurringFrames > 0), a trail tip lies nearer the true tip: every
+    // trail tip of such a segmentation gets this cap instead.
     // Measured (5 leaf presets, seeds 1-2, 0.6-1.0 m, 4 groups of 3 frames, tracked): see the
     // README, "Tips from readings that recur over frames".
     float maxExtensionOnRecurringTrail = 0.025f;
