@@ -198,9 +198,9 @@ Skeleton segmentedBladeSkeleton(const capture::Segmentation& segmentation, std::
         if (blade.tipOnTrail) {
             if (tip.toEndOnTrail) tip.widthFitTo = 1.f;
             tip.maxExtensionFraction =
-                std::min(tip.maxExtensionFraction, segmentation.recurringFrames > 0
-                                                       ? tip.maxExtensionOnRecurringTrail
-                                                       : tip.maxExtensionOnTrail);
+                segmentation.recurringFrames > 0
+                    ? recurringTrailExtensionCap(skeleton, tip)
+                    : std::min(tip.maxExtensionFraction, tip.maxExtensionOnTrail);
         }
         extendSkeletonTip(skeleton, tip);
     }

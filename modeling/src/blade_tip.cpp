@@ -15,6 +15,8 @@ namespace {
 // Fewest points in either least-squares window, and fewest skeleton points to extend.
 constexpr int kMinWindowPoints = 3;
 constexpr int kMinSkeletonPoints = 8;
+// The blade's width in pixels, for recurringTrailExtensionCap: this quantile of its widths.
+constexpr float kWidestQuantile = 0.9f;
 
 struct Line {
     float intercept = 0.f, slope = 0.f, slopeStdError = 0.f;
@@ -140,6 +142,17 @@ void extendSkeletonTip(Skeleton& s, const TipParams& params) {
         s.arcFraction[i] = s.arcFraction[i - 1] + glm::distance(s.points_m[i - 1], s.points_m[i]);
     const float total = s.arcFraction.back();
     for (float& f : s.arcFraction) f = total > 0.f ? f / total : 0.f;
+}
+
+float recurringTrailExtensionCap(const Skeleton& s, const TipParams& params) {
+    std::vector<float> width_px = s.width_px;
+    if (width_px.empty()) return params.maxExtensionOnTrail;
+    const auto widest =
+        width_px.begin() +
+        static_cast<std::ptrdiff_t>(kWidestQuantile * static_cast<float>(width_px.size() - 1));
+    std::nth_element(width_px.begin(), widest, width_px.end());
+    if (!(*widest > 0.f)) return params.maxExtensionOnTrail;
+    return std::min(params.maxExtensionFraction, params.maxExtensionOnRecurringTrail_px / *widest);
 }
 
 }  // namespace meadow::modeling

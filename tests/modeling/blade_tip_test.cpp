@@ -133,5 +133,54 @@ TEST(BladeTip, ATipOnATrailIsExtendedLessThanACutTip) {
               defaults.maxExtensionOnTrail * visible_mm * 1.05f);
 }
 
+// Readings recurring over a dozen frames carry a trail to where the tip is too narrow for the
+// sensor's pixels; how much is still missing grows with the pixel footprint, so the cap is a
+// fixed number of pixels over the blade's width in pixels.
+TEST(BladeTip, ARecurringTrailTipIsCappedByHowManyPixelsWideTheBladeIs) {
+    const TipParams params;
+    Skeleton s = cutSkeleton(0.9f, triangle_m);
+    s.width_px.assign(s.width_px.size(), 5.f);
+    EXPECT_FLOAT_EQ(recurringTrailExtensionCap(s, params),
+                    params.maxExtensionOnRecurringTrail_px / 5.f);
+    // Seen from twice as far, half as many pixels wide: twice the cap.
+    Skeleton far = s;
+    far.width_px.assign(far.width_px.size(), 2.5f);
+    EXPECT_FLOAT_EQ(recurringTrailExtensionCap(far, params),
+                    2.f * recurringTrailExtensionCap(s, params));
+    // A few widths the fork inflates (the lowest 5 % of the chain, 3x) do not set it.
+    Skeleton fork = s;
+    for (std::size_t i = 0; i < fork.width_px.size() / 20; ++i) fork.width_px[i] = 15.f;
+    EXPECT_FLOAT_EQ(recurringTrailExtensionCap(fork, params),
+                    recurringTrailExtensionCap(s, params));
+    // Never more than a cut tip's cap; without pixel widths, the cap of a group's own trails.
+    Skeleton hair = s;
+    hair.width_px.assign(hair.width_px.size(), 1.f);
+    EXPECT_FLOAT_EQ(recurringTrailExtensionCap(hair, params), params.maxExtensionFraction);
+    Skeleton noPixels = s;
+    noPixels.width_px.clear();
+    EXPECT_FLOAT_EQ(recurringTrailExtensionCap(noPixels, params), params.maxExtensionOnTrail);
+}
+
+// fitSegmentedBlade gives that cap to a trail tip of a segmentation with recurring readings.
+TEST(BladeTip, ATrailTipOfASegmentationWithRecurringReadingsGetsThePixelCap) {
+    auto blade = test::makeBlade({0.f, 0.08f, 0.5f}, kHeight_m, 0.2f, kBaseWidth_m);
+    blade.width = [](float s) { return s < 0.85f ? kBaseWidth_m * (1.f - s) : 0.f; };
+    const auto view = test::renderBlade(blade, test::fineIntrinsics(), 0.9f);
+    capture::Segmentation seg;
+    seg.blades.push_back(view.blade);
+    seg.blades.front().tipOnTrail = true;
+    seg.recurringFrames = 12;
+    BladeFitParams untipped;
+    untipped.tip.enabled = false;
+    const float cap =
+        recurringTrailExtensionCap(segmentedBladeSkeleton(seg, 0, view.frame, untipped));
+    const TipParams defaults;
+    ASSERT_GT(cap, 0.f);
+    ASSERT_NE(cap, defaults.maxExtensionOnTrail);
+    const float visible_mm = 0.85f * kHeight_m * 1e3f;
+    const BladeFit fit = fitSegmentedBlade(seg, 0, view.frame);
+    EXPECT_NEAR(fit.archetype.fit.tipExtension_mm, cap * visible_mm, 0.05f * cap * visible_mm);
+}
+
 }  // namespace
 }  // namespace meadow::modeling

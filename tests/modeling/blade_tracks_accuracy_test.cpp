@@ -145,8 +145,9 @@ TEST(BladeTracksAccuracy, EachBladeIsOneTrackAndItsMeanFitLandsNearerTheTrueTip)
 
 // Sharp-tip's long thin point is dotted in every frame, in different pixels each time: the
 // readings that recur over the 12 frames carry its tip trails farther toward the true tip.
-// Seed 1, 0.6 / 0.8 / 1.0 m, tracked tip RMS: measured 8.10 -> 5.19 mm (0.64), 15 blades either
-// way. Asserted with margin.
+// Seed 1, 0.6 / 0.8 / 1.0 m, tracked tip RMS: measured 8.10 -> 4.41 mm (0.54), 15 blades either
+// way (5.19 mm when a trail tip's extension was capped at a fixed 0.025 of its length). Asserted
+// with margin.
 constexpr double kMaxRecurringToOwnTipRatio = 0.85;
 
 TEST(BladeTracksAccuracy, ReadingsRecurringOverTheFramesBringSharpTipsNearerTheTruth) {
@@ -164,6 +165,22 @@ TEST(BladeTracksAccuracy, ReadingsRecurringOverTheFramesBringSharpTipsNearerTheT
               << " blades)\n";
     EXPECT_EQ(recurring.tracked, own.tracked);
     EXPECT_LE(after, kMaxRecurringToOwnTipRatio * before);
+}
+
+// What is still unseen of a tip past its trail is a matter of pixels, so a trail tip's extension
+// is capped by how many pixels wide the blade is (blade_tip.h, maxExtensionOnRecurringTrail_px):
+// farther blades may be extended farther. Shrub-leaf's long tapers need it most: seed 1, 0.6 /
+// 0.8 / 1.0 m, 12 frames, tracked tip RMS measured 2.68 mm (4.36 mm with a fixed 0.025 of the
+// length, which stopped its tips 3-9 mm short at 1.0 m). Asserted at the target.
+constexpr double kTipTarget_mm = 3.0;
+
+TEST(BladeTracksAccuracy, ShrubLeavesFromTwelveFramesMeetTheTipTarget) {
+    TipErrors e;
+    for (const float distance_m : {0.6f, 0.8f, 1.0f}) measure("shrub-leaf", distance_m, true, e);
+    ASSERT_EQ(e.tracked, 15);
+    const double rms = std::sqrt(e.trackedSq_mm2 / e.tracked);
+    std::cout << "shrub-leaf tracked tip RMS with recurring readings: " << rms << " mm\n";
+    EXPECT_LE(rms, kTipTarget_mm);
 }
 
 }  // namespace

@@ -42,11 +42,17 @@ struct TipParams {
     float maxExtensionFraction = 0.1f;
     float maxExtensionOnTrail = 0.05f;
     // Where the segmenter's trails could also run through readings recurring over a dozen
-    // frames (Segmentation::recurringFrames > 0), a trail tip lies nearer the true tip: every
-    // trail tip of such a segmentation gets this cap instead.
-    // Measured (5 leaf presets, seeds 1-2, 0.6-1.0 m, 4 groups of 3 frames, tracked): see the
-    // README, "Tips from readings that recur over frames".
-    float maxExtensionOnRecurringTrail = 0.025f;
+    // frames (Segmentation::recurringFrames > 0), a trail tip lies nearer the true tip, and what
+    // is still unseen of it is the part too narrow for the sensor's pixels: the farther the
+    // blade, the longer that part. Every trail tip of such a segmentation is capped at this many
+    // pixels over the blade's width in pixels, as a fraction of its visible length
+    // (recurringTrailExtensionCap): the length over which an even taper from the blade's widest
+    // to nothing along its whole length narrows by this many pixels. Seen from twice as far, half
+    // as many pixels wide, a blade may be extended twice as far. A fixed 0.025 of the length let
+    // near tips overshoot and stopped far ones short (shrub-leaf, mean along the tangent: +1.1 mm
+    // at 0.6 m, -3.7 mm at 1.0 m). Measured (4 leaf presets, seeds 1-2, 0.6-1.0 m, 4 groups of 3
+    // frames, tracked): see the README, "Tips from readings that recur over frames".
+    float maxExtensionOnRecurringTrail_px = 0.25f;
     // The trend's slope must be negative by at least this many standard errors.
     float minSlopeSignificance = 2.f;
 };
@@ -58,5 +64,12 @@ struct TipParams {
 // Leaves the skeleton as it is (tipExtension_m = 0) when the widths do not taper (slope >= 0 or
 // not significant), the trend reaches zero before the tip, or the chain has fewer than 8 points.
 void extendSkeletonTip(Skeleton& skeleton, const TipParams& params = {});
+
+// The extension cap, as a fraction of the visible length, for a trail tip of a segmentation
+// with recurring readings: maxExtensionOnRecurringTrail_px over the blade's width in pixels (the
+// 90th percentile of skeleton.width_px, so that a few widths the fork or the noise inflate do not
+// set it), at most maxExtensionFraction; maxExtensionOnTrail when the skeleton has no pixel widths.
+[[nodiscard]] float recurringTrailExtensionCap(const Skeleton& skeleton,
+                                               const TipParams& params = {});
 
 }  // namespace meadow::modeling
