@@ -91,6 +91,30 @@ TEST(TipTrails, DottedReadingsPastTheTipAreLinkedBackOnePixelWide) {
     EXPECT_NE(report.notes.back().find("1 tip trail"), std::string::npos) << report.notes.back();
 }
 
+// Two tips whose dotted readings a chain of readings joins above them (as readings recurring
+// over many frames join neighbouring tips): one group of readings, two trails, each linked back
+// onto its own blade where it leaves it.
+TEST(TipTrails, TwoTipsJoinedByReadingsBetweenThemAreTwoTrails) {
+    constexpr int kShift = 30;  // the second blade, kShift px to the right of the first
+    cv::Mat1b mask = bladeMask();
+    cv::Mat1b second;
+    cv::warpAffine(mask, second, cv::Matx23f(1, 0, kShift, 0, 1, 0), mask.size());
+    mask |= second;
+    cv::Mat1b readings = mask.clone();
+    constexpr int kTop = 60;
+    dotTip(readings, kTop);
+    dotTip(readings, kTop, kColumn + kShift);
+    for (int x = kColumn + 2; x < kColumn + kShift; x += 2) readings(kTop - 2, x) = 255;
+    StageReport report;
+    const seg::TipTrails trails = seg::recoverTipTrails(readings, cv::Mat1b(), {}, mask, report);
+    for (const int column : {kColumn, kColumn + kShift}) {
+        EXPECT_TRUE(trails.holds({column, kTop})) << "column " << column;
+        EXPECT_EQ(mask(kBlade.y - 1, column), 255) << "column " << column << ": not linked back";
+    }
+    ASSERT_FALSE(report.notes.empty());
+    EXPECT_NE(report.notes.back().find("2 tip trail"), std::string::npos) << report.notes.back();
+}
+
 TEST(TipTrails, EdgeSpeckleBesideTheBladeIsNotATrail) {
     cv::Mat1b readings = bladeMask();
     // Readings the lateral noise scattered 2-3 px off both sides, every eighth row (about 6 %

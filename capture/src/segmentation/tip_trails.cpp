@@ -72,37 +72,55 @@ int fillSlivers(cv::Mat1b& mask, const cv::Mat1b& added, int maxArea_px) {
     return filled;
 }
 
-// `trail` reordered from its reading of least `distance` outward: breadth first over the
-// trail's readings, `step` px apart at most (chessboard). Readings the fill does not reach (joined
-// to the rest only through edge readings) follow, nearest the mask first.
-template <class Distance>
-std::vector<cv::Point> alongTrail(const std::vector<cv::Point>& trail, const cv::Rect& local,
-                                  Distance distance, int step) {
+// One trail of a group of readings: where it meets the mask, and its readings from there out.
+struct TrailPart {
+    cv::Point attachedAt;
+    std::vector<cv::Point> readings;
+};
+
+// A group of readings can hold the trails of several tips, joined through readings along the
+// mask's edge between them; readings recurring over many frames join more of them. So `trail` is
+// split by where it meets the mask: each reading that `attachment` links to a mask pixel (x < 0:
+// none within reach) attaches there, attachments within kAttachSpread_px of one found before
+// (nearest the mask first, by `distance`) being one; every other reading goes to the part whose
+// flood fill over the readings (`step` px apart at most, chessboard) reaches it first, so each
+// part's readings run from the mask outward. Readings no fill reaches are left out: they join
+// the rest only through edge readings that touch the mask.
+template <class Attachment, class Distance>
+std::vector<TrailPart> splitByAttachment(std::vector<cv::Point> trail, const cv::Rect& local,
+                                         Attachment attachment, Distance distance, int step) {
+    std::sort(trail.begin(), trail.end(),
+              [&](cv::Point a, cv::Point b) { return distance(a) < distance(b); });
     cv::Mat1i index(local.size(), -1);
     for (size_t i = 0; i < trail.size(); ++i) index(trail[i] - local.tl()) = static_cast<int>(i);
-    const auto start = std::min_element(trail.begin(), trail.end(), [&](cv::Point a, cv::Point b) {
-        return distance(a) < distance(b);
-    });
-    std::vector<cv::Point> order{*start};
-    std::vector<char> taken(trail.size(), 0);
-    taken[static_cast<size_t>(start - trail.begin())] = 1;
-    for (size_t head = 0; head < order.size(); ++head)
+    std::vector<TrailPart> parts;
+    std::vector<int> partOf(trail.size(), -1);
+    std::vector<size_t> order;  // flood fill queue, every part's attaching readings first
+    for (size_t i = 0; i < trail.size(); ++i) {
+        const cv::Point at = attachment(trail[i]);
+        if (at.x < 0) continue;
+        const auto same = std::find_if(parts.begin(), parts.end(), [&](const TrailPart& p) {
+            return std::abs(at.x - p.attachedAt.x) <= kAttachSpread_px &&
+                   std::abs(at.y - p.attachedAt.y) <= kAttachSpread_px;
+        });
+        partOf[i] = static_cast<int>(same - parts.begin());
+        if (same == parts.end()) parts.push_back({at, {}});
+        order.push_back(i);
+    }
+    for (size_t head = 0; head < order.size(); ++head) {
+        const cv::Point p = trail[order[head]] - local.tl();
         for (int dy = -step; dy <= step; ++dy)
             for (int dx = -step; dx <= step; ++dx) {
-                const cv::Point q = order[head] - local.tl() + cv::Point(dx, dy);
+                const cv::Point q = p + cv::Point(dx, dy);
                 if (q.x < 0 || q.y < 0 || q.x >= local.width || q.y >= local.height) continue;
-                const int i = index(q);
-                if (i < 0 || taken[static_cast<size_t>(i)]) continue;
-                taken[static_cast<size_t>(i)] = 1;
-                order.push_back(trail[static_cast<size_t>(i)]);
+                const int j = index(q);
+                if (j < 0 || partOf[static_cast<size_t>(j)] >= 0) continue;
+                partOf[static_cast<size_t>(j)] = partOf[order[head]];
+                order.push_back(static_cast<size_t>(j));
             }
-    std::vector<cv::Point> rest;
-    for (size_t i = 0; i < trail.size(); ++i)
-        if (!taken[i]) rest.push_back(trail[i]);
-    std::sort(rest.begin(), rest.end(),
-              [&](cv::Point a, cv::Point b) { return distance(a) < distance(b); });
-    order.insert(order.end(), rest.begin(), rest.end());
-    return order;
+    }
+    for (const size_t i : order) parts[static_cast<size_t>(partOf[i])].readings.push_back(trail[i]);
+    return parts;
 }
 
 // Whether a trail leaving the mask at `at` runs on out of a tip: the mask near `at` is narrow
@@ -272,51 +290,52 @@ TipTrails recoverTipTrails(const cv::Mat1b& candidates, const cv::Mat1b& recurri
         return best;
     };
     int accepted = 0, rejectedShort = 0, rejectedSideways = 0, pixels = 0;
-    for (auto& group : groups) {
-        // It starts at the mask (its seed, which does not touch it, is the first reading of its
-        // trail) and must reach far enough from it.
-        auto& trail = group.trail;
+    cv::Mat1b onPart(box.size(), std::uint8_t{0});  // the part being linked
+    for (const auto& group : groups) {
+        // A trail starts at the mask (its seed, which does not touch it, is among its first
+        // readings) and must reach far enough from it.
         if (!group.reaches) {
             ++rejectedShort;
             continue;
         }
-        // Along the trail from where it leaves the mask: the reading nearest the mask first,
-        // then the others in the order a flood fill over the trail reaches them. Each links to
-        // the nearest pixel already on the trail or on the mask with a one-pixel line, so the
-        // trail stays connected to its blade.
         const cv::Rect local = grownWithin(group.bounds, window + 1, inBox);
         cv::Mat1f distance;
         cv::distanceTransform(~inMask(local), distance, cv::DIST_L2, cv::DIST_MASK_5);
         const auto distanceOf = [&](cv::Point p) { return distance(p - local.tl()); };
-        trail = alongTrail(trail, local, distanceOf, step);
-        const int before = cv::countNonZero(added(local));
-        // A trail meets its blade once, where it leaves the mask: a second link to the mask
-        // elsewhere would close a loop (taken for crossing blades) or add a spur beside it.
-        cv::Point attachedAt = nearest(trail.front(), inMask);
-        if (attachedAt.x >= 0 && !continuesTheMask(inMask, attachedAt, trail, distanceOf)) {
-            ++rejectedSideways;
-            continue;
-        }
-        for (const cv::Point p : trail) {
-            cv::Point to = nearest(p, added);
-            if (to.x < 0) {
-                to = nearest(p, inMask);
-                if (to.x < 0) continue;  // joined only through edge readings: not on this trail
-                if (attachedAt.x < 0) {
-                    attachedAt = to;
-                } else if (std::abs(to.x - attachedAt.x) > kAttachSpread_px ||
-                           std::abs(to.y - attachedAt.y) > kAttachSpread_px) {
-                    continue;
-                }
+        const auto onMask = [&](cv::Point p) { return nearest(p, inMask); };
+        for (const TrailPart& part :
+             splitByAttachment(group.trail, local, onMask, distanceOf, step)) {
+            if (std::none_of(part.readings.begin(), part.readings.end(),
+                             [&](cv::Point p) { return near(p) == 0; })) {
+                ++rejectedShort;
+                continue;
             }
-            cv::line(added, to, p, 255, 1, cv::LINE_8);
+            if (!continuesTheMask(inMask, part.attachedAt, part.readings, distanceOf)) {
+                ++rejectedSideways;
+                continue;
+            }
+            // Each reading links to the nearest pixel already on its part or, near where the
+            // part leaves the mask, on the mask, with a one-pixel line: the trail stays connected
+            // to its blade and meets it once (a second link elsewhere would close a loop, taken
+            // for crossing blades, or add a spur beside it).
+            onPart(local).setTo(0);
+            for (const cv::Point p : part.readings) {
+                cv::Point to = nearest(p, onPart);
+                if (to.x < 0) {
+                    to = nearest(p, inMask);
+                    if (to.x < 0 || std::abs(to.x - part.attachedAt.x) > kAttachSpread_px ||
+                        std::abs(to.y - part.attachedAt.y) > kAttachSpread_px)
+                        continue;
+                }
+                cv::line(onPart, to, p, 255, 1, cv::LINE_8);
+            }
+            onPart(local).setTo(0, inMask(local));
+            const int count = cv::countNonZero(onPart(local) & ~added(local));
+            if (count == 0) continue;
+            added(local) |= onPart(local);
+            pixels += count;
+            ++accepted;
         }
-        cv::Mat1b addedHere = added(local);
-        addedHere.setTo(0, inMask(local));
-        const int count = cv::countNonZero(addedHere) - before;
-        if (count == 0) continue;
-        pixels += count;
-        ++accepted;
     }
     if (rejectedSideways > 0)
         report.notes.push_back(std::to_string(rejectedSideways) +

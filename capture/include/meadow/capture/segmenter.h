@@ -116,7 +116,9 @@ struct SegmenterParams {
     // readings (lateral noise gives about half of them to the background), which outlier
     // removal and clean-up drop. Groups of such readings, gaps up to tipTrailGap_px, that start
     // at the mask and reach at least tipTrailMinReach_px from it are linked back one pixel wide;
-    // edge speckle beside a blade reaches 1-2 px. 0 = off.
+    // edge speckle beside a blade reaches 1-2 px. A group that meets the mask in several places
+    // (neighbouring tips joined through readings between them) is split there, each part a
+    // trail of its own. 0 = off.
     float tipTrailMinReach_px = 4.0f;
     int tipTrailGap_px = 2;
     int tipTrailMaxLength_px = 48;  // how far from the mask's box a trail is searched

@@ -52,7 +52,7 @@ struct TipParams {
     // near tips overshoot and stopped far ones short (shrub-leaf, mean along the tangent: +1.1 mm
     // at 0.6 m, -3.7 mm at 1.0 m). Measured (4 leaf presets, seeds 1-2, 0.6-1.0 m, 4 groups of 3
     // frames, tracked): see the README, "Tips from readings that recur over frames".
-    float maxExtensionOnRecurringTrail_px = 0.25f;
+    float maxExtensionOnRecurringTrail_px = 0.2f;
     // The trend's slope must be negative by at least this many standard errors.
     float minSlopeSignificance = 2.f;
 };
