@@ -110,15 +110,24 @@ TEST(BladeTip, IsOnByDefaultAndOnlyInFitSegmentedBladeNotInFitArchetype) {
     EXPECT_NEAR(fit.archetype.height_m(), 0.88f * kHeight_m, 1e-3f);
 }
 
-// fitSegmentedBlade on a rendered blade cut off at 85 % while still 15 % of its base width:
-// the trend asks for more than either cap. A tip the segmenter followed along a tip trail
-// (tipOnTrail) ends within a pixel or two of the true tip, so it gets the smaller cap.
-TEST(BladeTip, ATipOnATrailIsExtendedLessThanACutTip) {
+// A rendered blade cut off at 85 % while still 15 % of its base width (the width trend asks for
+// more than any cap), as the one blade of a segmentation.
+struct CutView {
+    test::SyntheticView view;
+    capture::Segmentation seg;
+};
+CutView bladeCutAt85Percent() {
     auto blade = test::makeBlade({0.f, 0.08f, 0.5f}, kHeight_m, 0.2f, kBaseWidth_m);
     blade.width = [](float s) { return s < 0.85f ? kBaseWidth_m * (1.f - s) : 0.f; };
-    const auto view = test::renderBlade(blade, test::fineIntrinsics(), 0.9f);
-    capture::Segmentation seg;
-    seg.blades.push_back(view.blade);
+    CutView c{test::renderBlade(blade, test::fineIntrinsics(), 0.9f), {}};
+    c.seg.blades.push_back(c.view.blade);
+    return c;
+}
+
+// fitSegmentedBlade on that blade. A tip the segmenter followed along a tip trail (tipOnTrail)
+// ends within a pixel or two of the true tip, so it gets the smaller cap.
+TEST(BladeTip, ATipOnATrailIsExtendedLessThanACutTip) {
+    auto [view, seg] = bladeCutAt85Percent();
     const TipParams defaults;
     ASSERT_LT(defaults.maxExtensionOnTrail, defaults.maxExtensionFraction);
 
@@ -163,11 +172,7 @@ TEST(BladeTip, ARecurringTrailTipIsCappedByHowManyPixelsWideTheBladeIs) {
 
 // fitSegmentedBlade gives that cap to a trail tip of a segmentation with recurring readings.
 TEST(BladeTip, ATrailTipOfASegmentationWithRecurringReadingsGetsThePixelCap) {
-    auto blade = test::makeBlade({0.f, 0.08f, 0.5f}, kHeight_m, 0.2f, kBaseWidth_m);
-    blade.width = [](float s) { return s < 0.85f ? kBaseWidth_m * (1.f - s) : 0.f; };
-    const auto view = test::renderBlade(blade, test::fineIntrinsics(), 0.9f);
-    capture::Segmentation seg;
-    seg.blades.push_back(view.blade);
+    auto [view, seg] = bladeCutAt85Percent();
     seg.blades.front().tipOnTrail = true;
     seg.recurringFrames = 12;
     BladeFitParams untipped;
