@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <glm/geometric.hpp>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -197,10 +198,14 @@ Skeleton segmentedBladeSkeleton(const capture::Segmentation& segmentation, std::
         TipParams tip = params.tip;
         if (blade.tipOnTrail) {
             if (tip.toEndOnTrail) tip.widthFitTo = 1.f;
-            tip.maxExtensionFraction =
-                segmentation.recurringFrames > 0
-                    ? recurringTrailExtensionCap(skeleton, tip)
-                    : std::min(tip.maxExtensionFraction, tip.maxExtensionOnTrail);
+            const std::optional<float> recurring = segmentation.recurringFrames > 0
+                                                       ? recurringTrailExtension(skeleton, tip)
+                                                       : std::nullopt;
+            if (recurring)
+                tip.fixedExtensionFraction = *recurring;
+            else
+                tip.maxExtensionFraction =
+                    std::min(tip.maxExtensionFraction, tip.maxExtensionOnTrail);
         }
         extendSkeletonTip(skeleton, tip);
     }

@@ -15,7 +15,7 @@ namespace {
 // Fewest points in either least-squares window, and fewest skeleton points to extend.
 constexpr int kMinWindowPoints = 3;
 constexpr int kMinSkeletonPoints = 8;
-// The blade's width in pixels, for recurringTrailExtensionCap: this quantile of its widths.
+// The blade's width in pixels, for recurringTrailExtension: this quantile of its widths.
 constexpr float kWidestQuantile = 0.9f;
 
 struct Line {
@@ -65,9 +65,13 @@ void extendSkeletonTip(Skeleton& s, const TipParams& params) {
     // Width trend over the tapering part, extrapolated to zero.
     const float widthTo_m = params.widthFitTo * length_m;
     const Line w = fitLine(arc_m, s.width_m, params.widthFitFrom * length_m, widthTo_m);
-    if (!(w.slope < 0.f) || -w.slope < params.minSlopeSignificance * w.slopeStdError) return;
-    const float zero_m = -w.intercept / w.slope;
-    const float extension_m = std::min(zero_m - length_m, params.maxExtensionFraction * length_m);
+    const bool tapers = w.slope < 0.f && -w.slope >= params.minSlopeSignificance * w.slopeStdError;
+    float extension_m = params.fixedExtensionFraction * length_m;
+    if (!(params.fixedExtensionFraction > 0.f)) {
+        if (!tapers) return;
+        extension_m =
+            std::min(-w.intercept / w.slope - length_m, params.maxExtensionFraction * length_m);
+    }
     if (!(extension_m > 0.f)) return;
 
     // End tangent: least-squares line through the last points against arc length.
@@ -91,7 +95,7 @@ void extendSkeletonTip(Skeleton& s, const TipParams& params) {
     const bool hasPx = width_px.size() == s.points_m.size();
     float pxPerMetre = 0.f;
     for (int i = 0; i < n; ++i) {
-        if (arc_m[i] <= widthTo_m) {
+        if (arc_m[i] <= widthTo_m || !tapers) {
             if (hasPx && width_m[i] > 0.f) pxPerMetre = width_px[i] / width_m[i];
             continue;
         }
@@ -144,15 +148,15 @@ void extendSkeletonTip(Skeleton& s, const TipParams& params) {
     for (float& f : s.arcFraction) f = total > 0.f ? f / total : 0.f;
 }
 
-float recurringTrailExtensionCap(const Skeleton& s, const TipParams& params) {
+std::optional<float> recurringTrailExtension(const Skeleton& s, const TipParams& params) {
     std::vector<float> width_px = s.width_px;
-    if (width_px.empty()) return params.maxExtensionOnTrail;
+    if (width_px.empty()) return std::nullopt;
     const auto widest =
         width_px.begin() +
         static_cast<std::ptrdiff_t>(kWidestQuantile * static_cast<float>(width_px.size() - 1));
     std::nth_element(width_px.begin(), widest, width_px.end());
-    if (!(*widest > 0.f)) return params.maxExtensionOnTrail;
-    return std::min(params.maxExtensionFraction, params.maxExtensionOnRecurringTrail_px / *widest);
+    if (!(*widest > 0.f)) return std::nullopt;
+    return std::min(params.maxExtensionFraction, params.extensionOnRecurringTrail_px / *widest);
 }
 
 }  // namespace meadow::modeling

@@ -142,49 +142,64 @@ TEST(BladeTip, ATipOnATrailIsExtendedLessThanACutTip) {
               defaults.maxExtensionOnTrail * visible_mm * 1.05f);
 }
 
-// Readings recurring over a dozen frames carry a trail to where the tip is too narrow for the
-// sensor's pixels; how much is still missing grows with the pixel footprint, so the cap is a
-// fixed number of pixels over the blade's width in pixels.
-TEST(BladeTip, ARecurringTrailTipIsCappedByHowManyPixelsWideTheBladeIs) {
+// Readings recurring over a dozen frames carry a trail to where the tip is too narrow to be read
+// in enough of them; how much is still missing grows with the pixel footprint, so the extension
+// is a fixed number of pixels over the blade's width in pixels.
+TEST(BladeTip, ARecurringTrailTipIsExtendedByHowManyPixelsWideTheBladeIs) {
     const TipParams params;
     Skeleton s = cutSkeleton(0.9f, triangle_m);
     s.width_px.assign(s.width_px.size(), 5.f);
-    EXPECT_FLOAT_EQ(recurringTrailExtensionCap(s, params),
-                    params.maxExtensionOnRecurringTrail_px / 5.f);
-    // Seen from twice as far, half as many pixels wide: twice the cap.
+    ASSERT_TRUE(recurringTrailExtension(s, params));
+    EXPECT_FLOAT_EQ(*recurringTrailExtension(s, params), params.extensionOnRecurringTrail_px / 5.f);
+    // Seen from twice as far, half as many pixels wide: twice as far.
     Skeleton far = s;
     far.width_px.assign(far.width_px.size(), 2.5f);
-    EXPECT_FLOAT_EQ(recurringTrailExtensionCap(far, params),
-                    2.f * recurringTrailExtensionCap(s, params));
+    EXPECT_FLOAT_EQ(*recurringTrailExtension(far, params),
+                    2.f * *recurringTrailExtension(s, params));
     // A few widths the fork inflates (the lowest 5 % of the chain, 3x) do not set it.
     Skeleton fork = s;
     for (std::size_t i = 0; i < fork.width_px.size() / 20; ++i) fork.width_px[i] = 15.f;
-    EXPECT_FLOAT_EQ(recurringTrailExtensionCap(fork, params),
-                    recurringTrailExtensionCap(s, params));
-    // Never more than a cut tip's cap; without pixel widths, the cap of a group's own trails.
+    EXPECT_FLOAT_EQ(*recurringTrailExtension(fork, params), *recurringTrailExtension(s, params));
+    // Never more than a cut tip's cap; nothing to go by without pixel widths.
     Skeleton hair = s;
     hair.width_px.assign(hair.width_px.size(), 1.f);
-    EXPECT_FLOAT_EQ(recurringTrailExtensionCap(hair, params), params.maxExtensionFraction);
+    EXPECT_FLOAT_EQ(*recurringTrailExtension(hair, params), params.maxExtensionFraction);
     Skeleton noPixels = s;
     noPixels.width_px.clear();
-    EXPECT_FLOAT_EQ(recurringTrailExtensionCap(noPixels, params), params.maxExtensionOnTrail);
+    EXPECT_FALSE(recurringTrailExtension(noPixels, params));
 }
 
-// fitSegmentedBlade gives that cap to a trail tip of a segmentation with recurring readings.
-TEST(BladeTip, ATrailTipOfASegmentationWithRecurringReadingsGetsThePixelCap) {
+// The extension does not wait for the widths to taper: along a trail they are the trail's own.
+TEST(BladeTip, AFixedExtensionIsMadeWhateverTheWidthsDo) {
+    Skeleton s = cutSkeleton(0.8f, [](float) { return kBaseWidth_m; });
+    TipParams params;
+    Skeleton trend = s;
+    extendSkeletonTip(trend, params);
+    EXPECT_EQ(trend.tipExtension_m, 0.f);
+    params.fixedExtensionFraction = 0.04f;
+    extendSkeletonTip(s, params);
+    EXPECT_NEAR(s.tipExtension_m, 0.04f * 0.8f * kHeight_m, 1e-5f);
+    EXPECT_LT(glm::distance(s.points_m.back(), truePoint(0.8f * 1.04f * kHeight_m)), 1e-4f);
+    EXPECT_EQ(s.width_m.back(), 0.f);
+}
+
+// fitSegmentedBlade extends a trail tip of a segmentation with recurring readings by that rule,
+// past what the width trend would give it (at most maxExtensionOnTrail of a group's own trails).
+TEST(BladeTip, ATrailTipOfASegmentationWithRecurringReadingsIsExtendedByThePixelRule) {
     auto [view, seg] = bladeCutAt85Percent();
     seg.blades.front().tipOnTrail = true;
     seg.recurringFrames = 12;
     BladeFitParams untipped;
     untipped.tip.enabled = false;
-    const float cap =
-        recurringTrailExtensionCap(segmentedBladeSkeleton(seg, 0, view.frame, untipped));
+    const std::optional<float> fraction =
+        recurringTrailExtension(segmentedBladeSkeleton(seg, 0, view.frame, untipped));
+    ASSERT_TRUE(fraction);
     const TipParams defaults;
-    ASSERT_GT(cap, 0.f);
-    ASSERT_NE(cap, defaults.maxExtensionOnTrail);
+    ASSERT_NE(*fraction, defaults.maxExtensionOnTrail);
     const float visible_mm = 0.85f * kHeight_m * 1e3f;
     const BladeFit fit = fitSegmentedBlade(seg, 0, view.frame);
-    EXPECT_NEAR(fit.archetype.fit.tipExtension_mm, cap * visible_mm, 0.05f * cap * visible_mm);
+    EXPECT_NEAR(fit.archetype.fit.tipExtension_mm, *fraction * visible_mm,
+                0.05f * *fraction * visible_mm);
 }
 
 }  // namespace

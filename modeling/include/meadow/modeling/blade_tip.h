@@ -7,6 +7,8 @@
 // The defaults were chosen on the four leaf presets at nominal noise (modeling_accuracy_test.cpp):
 // tip RMS 24.8 -> 12.9 mm, height error 11.8 -> 4.2 %, width MAE 14.6 -> 10.3 % of max width.
 // The piece is straight: a drooping tip ends beside the true curve.
+#include <optional>
+
 #include "meadow/modeling/skeleton.h"
 
 namespace meadow::modeling {
@@ -42,34 +44,41 @@ struct TipParams {
     float maxExtensionFraction = 0.1f;
     float maxExtensionOnTrail = 0.05f;
     // Where the segmenter's trails could also run through readings recurring over a dozen
-    // frames (Segmentation::recurringFrames > 0), a trail tip lies nearer the true tip, and what
-    // is still unseen of it is the part too narrow for the sensor's pixels: the farther the
-    // blade, the longer that part. Every trail tip of such a segmentation is capped at this many
-    // pixels over the blade's width in pixels, as a fraction of its visible length
-    // (recurringTrailExtensionCap): the length over which an even taper from the blade's widest
-    // to nothing along its whole length narrows by this many pixels. Seen from twice as far, half
-    // as many pixels wide, a blade may be extended twice as far. A fixed 0.025 of the length let
-    // near tips overshoot and stopped far ones short (shrub-leaf, mean along the tangent: +1.1 mm
-    // at 0.6 m, -3.7 mm at 1.0 m). Measured (4 leaf presets, seeds 1-2, 0.6-1.0 m, 4 groups of 3
-    // frames, tracked): see the README, "Tips from readings that recur over frames".
-    float maxExtensionOnRecurringTrail_px = 0.2f;
+    // frames (Segmentation::recurringFrames > 0), a trail tip ends where the tip became too thin
+    // to be read in enough frames, and what is still unseen of it is the part too narrow for the
+    // sensor's pixels: the farther the blade, the longer that part. Every trail tip of such a
+    // segmentation is extended by this many pixels over the blade's width in pixels, as a
+    // fraction of its visible length (recurringTrailExtension), whatever the widths' trend says
+    // (along a trail they are the trail's own 1-2 px, not the blade's taper): the length over
+    // which an even taper from the blade's widest to nothing along its whole length narrows by
+    // this many pixels. Seen from twice as far, half as many pixels wide, a blade is extended
+    // twice as far. A cap of a fixed 0.025 of the length on the trend's extension let near tips
+    // overshoot and stopped far ones short (shrub-leaf, mean along the tangent: +1.1 mm at 0.6 m,
+    // -3.7 mm at 1.0 m). Measured (4 leaf presets, seeds 1-2, 0.6-1.0 m, 4 groups of 3 frames,
+    // tracked): see the README, "Tips from readings that recur over frames".
+    float extensionOnRecurringTrail_px = 0.2f;
+    // When > 0, extendSkeletonTip extends by this fraction of the visible length instead of to
+    // the width trend's zero (segmentedBladeSkeleton sets it for recurring trail tips).
+    float fixedExtensionFraction = 0.f;
     // The trend's slope must be negative by at least this many standard errors.
     float minSlopeSignificance = 2.f;
 };
 
 // Extends the skeleton from its tip (points_m.back()) along the end tangent by the length at which
 // the widths' linear trend reaches zero (capped at maxExtensionFraction of the skeleton's length),
-// and resamples every per-point sequence to the same number of points by 3D arc length. Widths
-// past widthFitTo follow the trend, down to 0 at the new tip. Sets tipExtension_m and tipPoints.
-// Leaves the skeleton as it is (tipExtension_m = 0) when the widths do not taper (slope >= 0 or
-// not significant), the trend reaches zero before the tip, or the chain has fewer than 8 points.
+// or by fixedExtensionFraction of it when that is set, and resamples every per-point sequence to
+// the same number of points by 3D arc length. Widths past widthFitTo follow the trend (where it
+// tapers), down to 0 at the new tip. Sets tipExtension_m and tipPoints. Without
+// fixedExtensionFraction, leaves the skeleton as it is (tipExtension_m = 0) when the widths do not
+// taper (slope >= 0 or not significant) or the trend reaches zero before the tip; always when the
+// chain has fewer than 8 points.
 void extendSkeletonTip(Skeleton& skeleton, const TipParams& params = {});
 
-// The extension cap, as a fraction of the visible length, for a trail tip of a segmentation
-// with recurring readings: maxExtensionOnRecurringTrail_px over the blade's width in pixels (the
-// 90th percentile of skeleton.width_px, so that a few widths the fork or the noise inflate do not
-// set it), at most maxExtensionFraction; maxExtensionOnTrail when the skeleton has no pixel widths.
-[[nodiscard]] float recurringTrailExtensionCap(const Skeleton& skeleton,
-                                               const TipParams& params = {});
+// The extension, as a fraction of the visible length, of a trail tip of a segmentation with
+// recurring readings: extensionOnRecurringTrail_px over the blade's width in pixels (the 90th
+// percentile of skeleton.width_px, so that a few widths the fork or the noise inflate do not set
+// it), at most maxExtensionFraction; nullopt when the skeleton has no pixel widths.
+[[nodiscard]] std::optional<float> recurringTrailExtension(const Skeleton& skeleton,
+                                                           const TipParams& params = {});
 
 }  // namespace meadow::modeling

@@ -31,7 +31,7 @@ struct CaptureOptions {
     // (capture/recurring_readings.h), taken over the last recurringFrames frames (rounded up to
     // whole groups) when a run of groups is segmented; fewer frames in all, or 0: each group's
     // trails see its own readings only. Measured (README, "Tips from readings that recur over
-    // frames"): sharp-tip's tip RMS from 12 frames 8.30 -> 5.19 mm, shrub-leaf's 4.40 -> 2.61 mm.
+    // frames"): sharp-tip's tip RMS from 12 frames 8.30 -> 4.20 mm, shrub-leaf's 4.40 -> 2.84 mm.
     int recurringFrames = 12;
     capture::RecurringParams recurring;
     std::filesystem::path debugDir;  // overlay PNG per segmentation when not empty
