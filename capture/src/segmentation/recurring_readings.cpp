@@ -53,8 +53,8 @@ RecurringReadings recurringReadings(std::span<const DepthFrame> frames,
     // odd-even merge sort, each comparator an element-wise min and max): the per-pixel sort it
     // replaced cost 30 ms for 12 frames at 640x480, five times this. No reading sorts last.
     const std::size_t n = frames.size();
-    std::vector<cv::Mat> sorted(
-        n);  // cv::Mat, not Mat1w: std::min would take a Mat1w for a comparator
+    // cv::Mat, not Mat1w: std::min would take a Mat1w for a comparator.
+    std::vector<cv::Mat> sorted(n);
     for (std::size_t i = 0; i < n; ++i) {
         sorted[i] = frames[i].depth_mm.clone();
         sorted[i].setTo(kNoReading, frames[i].depth_mm == 0);
