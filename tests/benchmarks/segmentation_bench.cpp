@@ -9,6 +9,7 @@
 #include "meadow/capture/frame_memory.h"
 #include "meadow/capture/recurring_readings.h"
 #include "meadow/capture/segmenter.h"
+#include "meadow/capture/tuft_motion.h"
 #include "segmentation/drawn_tuft.h"
 
 namespace {
@@ -125,6 +126,17 @@ void BM_RecurringReadings12(benchmark::State& state) {
     }
 }
 
+// The motion test capture runs on each such window before its recurring readings are used, in
+// the band of the window's first segmentation.
+void BM_TuftMotion12(benchmark::State& state) {
+    const std::vector<DepthFrame> frames = twelveFrames();
+    const Segmentation band = Segmenter().segment(std::span<const DepthFrame>(frames.data(), 3));
+    for (auto _ : state) {
+        const TuftMotion m = tuftMotion(frames, band.nearDepth_m, band.farDepth_m);
+        benchmark::DoNotOptimize(m.farChanged);
+    }
+}
+
 void BM_FusedGroupOf3(benchmark::State& state) {
     const std::vector<DepthFrame> frames = twelveFrames();
     const RecurringReadings tips = state.range(0) ? recurringReadings(frames) : RecurringReadings{};
@@ -147,6 +159,7 @@ BENCHMARK(BM_FrontEnd_AutoBand_Default)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_MaskToBlades)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_TemporalFusion5)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_RecurringReadings12)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_TuftMotion12)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_FusedGroupOf3)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
 
 }  // namespace

@@ -1,0 +1,102 @@
+// The motion test (tuft_motion.h): readings changed several frames apart against one apart.
+#include "meadow/capture/tuft_motion.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <iostream>
+#include <opencv2/core.hpp>
+#include <random>
+#include <vector>
+
+#include "meadow/capture/error.h"
+
+namespace meadow::capture {
+namespace {
+
+constexpr std::uint16_t kWall_mm = 1500;
+constexpr int kBlade_mm = 700;
+constexpr float kNear_m = 0.6f, kFar_m = 0.8f;
+
+// A blade 6 px wide and 80 px tall before a wall, read with noise: depth jitter of 2 mm, each
+// edge pixel given to the blade or the wall at random (lateral noise) or, one in five, to a depth
+// between them (a flying pixel), and 2 % of the readings dropped. It moves `step_px` to the right
+// from one frame to the next.
+std::vector<DepthFrame> bladeFrames(int count, int step_px, std::uint32_t seed = 1) {
+    std::mt19937 rng(seed);
+    std::normal_distribution<float> jitter(0.f, 2.f);
+    std::uniform_real_distribution<float> u(0.f, 1.f);
+    std::vector<DepthFrame> out(static_cast<std::size_t>(count));
+    for (int i = 0; i < count; ++i) {
+        cv::Mat1w d(120, 160, kWall_mm);
+        const int left = 40 + i * step_px, right = left + 6;  // the edge columns
+        for (int y = 20; y < 100; ++y)
+            for (int x = left; x <= right; ++x) {
+                const bool edge = x == left || x == right;
+                const float r = u(rng);
+                if (!edge || r < 0.4f)
+                    d(y, x) = static_cast<std::uint16_t>(std::lround(kBlade_mm + jitter(rng)));
+                else if (r < 0.6f)  // a flying pixel, between the blade and the wall
+                    d(y, x) = static_cast<std::uint16_t>(kBlade_mm + 20 + 80 * u(rng));
+            }
+        for (auto& v : d)
+            if (u(rng) < 0.02f) v = 0;
+        out[static_cast<std::size_t>(i)].depth_mm = d;
+        out[static_cast<std::size_t>(i)].index = i;
+    }
+    return out;
+}
+
+TEST(TuftMotion, AStillTuftChangesAsMuchOneFrameApartAsSix) {
+    const TuftMotion m = tuftMotion(bladeFrames(12, 0), kNear_m, kFar_m);
+    std::cout << "still: " << m.summary() << '\n';
+    ASSERT_TRUE(m.measured);
+    // Lateral noise and dropouts change some readings from one frame to the next...
+    EXPECT_GT(m.nearChanged, 0.005);
+    // ...and no more six frames apart (measured 1.1x; the simulated presets 0.9-1.1x).
+    EXPECT_NEAR(m.ratio(), 1.0, 0.25);
+    EXPECT_FALSE(m.moved());
+    // 6 first frames of 480 in-band readings each, less the drops.
+    EXPECT_GT(m.readings, 6 * 440);
+    EXPECT_LT(m.readings, 6 * 490);
+}
+
+TEST(TuftMotion, ATuftThatSwaysChangesMoreTheFartherApartTheFramesAre) {
+    // One pixel a frame: the neighbourhood hides a one-frame step, not six (measured 11.7x).
+    const TuftMotion m = tuftMotion(bladeFrames(12, 1), kNear_m, kFar_m);
+    std::cout << "moving: " << m.summary() << '\n';
+    ASSERT_TRUE(m.measured);
+    EXPECT_GT(m.ratio(), 2.0);
+    EXPECT_TRUE(m.moved());
+    EXPECT_NE(m.summary().find("6 apart"), std::string::npos) << m.summary();
+}
+
+TEST(TuftMotion, TooFewFramesOrNoReadingInTheBandIsNotMeasured) {
+    EXPECT_FALSE(tuftMotion(bladeFrames(6, 1), kNear_m, kFar_m).measured);  // needs farLag + 1
+    const TuftMotion none = tuftMotion(bladeFrames(12, 1), 0.2f, 0.3f);
+    EXPECT_FALSE(none.measured);
+    EXPECT_FALSE(none.moved());
+    EXPECT_NE(none.summary().find("not measured"), std::string::npos);
+}
+
+TEST(TuftMotion, BadInputIsOneClearError) {
+    std::vector<DepthFrame> f = bladeFrames(12, 0);
+    EXPECT_THROW((void)tuftMotion(f, 0.8f, 0.6f), CaptureError);  // inverted band
+    EXPECT_THROW((void)tuftMotion(f, NAN, 0.6f), CaptureError);
+    MotionParams lags;
+    lags.farLag = 1;
+    EXPECT_THROW((void)tuftMotion(f, kNear_m, kFar_m, lags), CaptureError);
+    MotionParams ratio;
+    ratio.movedRatio = 0.5f;
+    EXPECT_THROW((void)tuftMotion(f, kNear_m, kFar_m, ratio), CaptureError);
+    f[7].depth_mm = cv::Mat1w(60, 80, kWall_mm);
+    try {
+        (void)tuftMotion(f, kNear_m, kFar_m);
+        FAIL() << "frames of different sizes were accepted";
+    } catch (const CaptureError& e) {
+        EXPECT_NE(std::string(e.what()).find("frame 7"), std::string::npos) << e.what();
+    }
+}
+
+}  // namespace
+}  // namespace meadow::capture
