@@ -91,6 +91,11 @@ void runCapture(CaptureArgs& args) {
         std::cout << s.averagedArchetypes << " archetype(s) fitted to a blade seen in several of "
                   << s.segmentations << " fused groups (the mean of its skeletons; --per-group "
                   << "keeps one archetype per group)\n";
+    if (s.movingRuns > 0)
+        std::cout << "the tuft moved in " << s.movingRuns << " of " << s.motionTests
+                  << " run(s) of frames (" << s.motion
+                  << "): those were segmented without recurring readings and modelled one "
+                     "archetype per group (--assume-still takes every run for still)\n";
     if (const std::string skipped = modeling::skippedSummary(s); !skipped.empty())
         std::cout << skipped << '\n';
     if (!s.notes.empty()) {
@@ -120,8 +125,10 @@ void addCaptureCommand(CLI::App& app) {
         "unfitted. A still tuft is modelled better from more frames: record a dozen or more, and "
         "each blade becomes one archetype fitted to its views from every group of --fuse frames "
         "(README, \"One archetype per blade\"), and thin tips are followed through the readings "
-        "that recur over --recurring-frames frames. For a tuft that moves, pass --per-group "
-        "--recurring-frames 0.");
+        "that recur over --recurring-frames frames. Each such run of frames is first tested for "
+        "motion: where the tuft moved (wind), its groups are segmented without the recurring "
+        "readings and each blade of each group is its own archetype (README, \"A tuft that "
+        "moves\").");
     cmd->add_option("SOURCE", args->source,
                     "Recording folder, plain folder of 16-bit PNGs (with --intrinsics and "
                     "--depth-unit), .oni file, or openni:// for a live camera")
@@ -180,8 +187,8 @@ void addCaptureCommand(CLI::App& app) {
         ->check(CLI::Range(0.f, 20.f));
     cmd->add_flag_callback(
         "--per-group", [args] { args->options.tracks.enabled = false; },
-        "One archetype per blade and fused group, for a tuft or camera that moves between groups "
-        "(with --recurring-frames 0). "
+        "One archetype per blade and fused group, for a camera that moves between groups (runs "
+        "in which the tuft moved are found by a motion test and modelled so already). "
         "By default a blade seen in several groups (its skeletons within " +
             std::to_string(static_cast<int>(
                 std::lround(100.f * modeling::BladeTrackParams{}.maxDistanceFraction))) +
@@ -195,11 +202,20 @@ void addCaptureCommand(CLI::App& app) {
                std::to_string(capture::RecurringParams{}.minFrames) + ", within " +
                std::to_string(capture::RecurringParams{}.agreement_mm) +
                " mm) over this many frames of a still tuft, where a thin tip is read a few "
-               "times in different pixels; 0 = each group's own readings only, as for a tuft "
-               "that moves (with --per-group). Needs a recording of at least this many frames "
-               "(README, \"Tips from readings that recur over frames\")")
+               "times in different pixels; 0 = each group's own readings only. A run in which "
+               "the tuft moved is segmented without them (--assume-still). Needs a recording "
+               "of at least this many frames (README, \"Tips from readings that recur over "
+               "frames\")")
         ->capture_default_str()
         ->check(CLI::Range(0, 64));
+    cmd->add_flag_callback(
+        "--assume-still", [args] { args->options.checkMotion = false; },
+        "Take every run of --recurring-frames frames for a still tuft, without testing it for "
+        "motion (the test: readings changed " +
+            std::to_string(capture::MotionParams{}.farLag) +
+            " frames apart against 1 apart; a tuft that moves from " +
+            std::to_string(capture::MotionParams{}.movedRatio).substr(0, 3) +
+            "x, still tufts measured 0.9-1.1x, wind 2.1-2.4x)");
     cmd->add_flag(
         "--keep-flagged", args->options.keepFlagged,
         "Also model blades the segmenter flagged (overlapping, curling, too thin, base hidden)");

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cstdio>
 #include <deque>
+#include <set>
 
 #include "meadow/modeling/archetype_merge.h"
 #include "meadow/modeling/error.h"
@@ -122,10 +123,11 @@ CaptureResult captureArchetypes(capture::DepthSource& source, const std::string&
     std::size_t pending = 0;                 // of them, not yet segmented
     std::span<const capture::DepthFrame> group;
     capture::RecurringReadings tips;
-    const auto processGroup = [&] {
-        if (group.empty()) return;
-        const capture::Segmentation seg = segmenter.segment(group, tips);
+    std::set<int> movingGroups;  // groups of runs in which the tuft moved: not tracked
+    bool moving = false;         // the run being segmented moved
+    const auto processGroup = [&](const capture::Segmentation& seg) {
         const int groupIndex = summary.segmentations++;
+        if (moving) movingGroups.insert(groupIndex);
         const int frameIndex = group.front().index;
         if (!options.debugDir.empty())
             capture::writeDebugOverlay(options.debugDir / frameName(frameIndex), group.front(),
@@ -173,11 +175,32 @@ CaptureResult captureArchetypes(capture::DepthSource& source, const std::string&
         if (pending == 0) return;
         const std::vector<capture::DepthFrame> frames(recent.begin(), recent.end());
         tips = recurringReadingsOfRun(options, frames);
+        moving = false;
         const auto fusion = static_cast<std::size_t>(options.fusionFrames);
         for (std::size_t first = frames.size() - pending; first < frames.size(); first += fusion) {
             group = std::span<const capture::DepthFrame>(frames).subspan(
                 first, std::min(fusion, frames.size() - first));
-            processGroup();
+            capture::Segmentation seg = segmenter.segment(group, tips);
+            // The run's first segmentation gives the tuft's band to test the run for motion in.
+            if (first == frames.size() - pending && options.checkMotion && !tips.depth_mm.empty() &&
+                seg.farDepth_m > seg.nearDepth_m) {
+                const capture::TuftMotion motion =
+                    capture::tuftMotion(frames, seg.nearDepth_m, seg.farDepth_m, options.motion);
+                summary.motionTests += motion.measured;
+                if (motion.moved(options.motion)) {
+                    moving = true;
+                    ++summary.movingRuns;
+                    const std::string what = motion.summary(options.motion);
+                    if (summary.motion.empty()) summary.motion = what;
+                    summary.notes.push_back(
+                        "frames " + std::to_string(frames.front().index) + "-" +
+                        std::to_string(frames.back().index) + ": the tuft moved (" + what +
+                        "): segmented without recurring readings, one archetype per group");
+                    tips = {};
+                    seg = segmenter.segment(group, tips);
+                }
+            }
+            processGroup(seg);
         }
         group = {};
         pending = 0;
@@ -194,7 +217,20 @@ CaptureResult captureArchetypes(capture::DepthSource& source, const std::string&
     }
     processPending();
 
-    for (const std::vector<std::size_t>& track : trackBlades(observations, options.tracks)) {
+    // A track that holds a view from a run in which the tuft moved is one archetype per view:
+    // the mean of a moving blade's views is no view of it.
+    std::vector<std::vector<std::size_t>> tracks;
+    for (std::vector<std::size_t>& track : trackBlades(observations, options.tracks)) {
+        const bool anyMoving = std::any_of(track.begin(), track.end(), [&](std::size_t i) {
+            return movingGroups.contains(observations[i].group);
+        });
+        if (!anyMoving || track.size() == 1) {
+            tracks.push_back(std::move(track));
+            continue;
+        }
+        for (const std::size_t i : track) tracks.push_back({i});
+    }
+    for (const std::vector<std::size_t>& track : tracks) {
         const Observed& first = observed[track.front()];
         Source src{sourceName, first.sighting.frame, first.sighting.bladeId, {}, {}};
         for (const std::size_t i : track) {
