@@ -215,7 +215,7 @@ void addCaptureCommand(CLI::App& app) {
             std::to_string(capture::MotionParams{}.farLag) +
             " frames apart against 1 apart; a tuft that moves from " +
             std::to_string(capture::MotionParams{}.movedRatio).substr(0, 3) +
-            "x, still tufts measured 0.9-1.1x, wind 2.1-2.4x)");
+            "x, still tufts measured 0.95-1.05x, wind 2.1-2.8x)");
     cmd->add_flag(
         "--keep-flagged", args->options.keepFlagged,
         "Also model blades the segmenter flagged (overlapping, curling, too thin, base hidden)");

@@ -224,7 +224,7 @@ CaptureResult captureArchetypes(capture::DepthSource& source, const std::string&
         const bool anyMoving = std::any_of(track.begin(), track.end(), [&](std::size_t i) {
             return movingGroups.contains(observations[i].group);
         });
-        if (!anyMoving || track.size() == 1) {
+        if (!anyMoving) {
             tracks.push_back(std::move(track));
             continue;
         }

@@ -42,8 +42,8 @@ capture::TuftMotion motionOf(const std::string& presetName, std::uint64_t seed) 
     return m;
 }
 
-// Measured (seeds 1-3): wind 2.2-2.4x; the still presets 0.9-1.1x, noisy (3x noise) and slim
-// grass included, whose readings change most from frame to frame (10-17 % and 3-4 %).
+// Measured (seeds 1-3): wind 2.1-2.8x (0.6-1.0 m); the still presets 0.95-1.05x, noisy (3x noise)
+// and slim grass included, whose readings change most from frame to frame (10-17 % and 3-4 %).
 TEST(TuftMotionPresets, TheWindPresetMovesAndStillTuftsDoNot) {
     for (const std::uint64_t seed : {1u, 2u}) {
         const capture::TuftMotion wind = motionOf("wind", seed);

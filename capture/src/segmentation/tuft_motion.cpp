@@ -81,14 +81,17 @@ TuftMotion tuftMotion(std::span<const DepthFrame> frames, float nearDepth_m, flo
     // In millimetres, rounded inward; 0 (no reading) is never in the band.
     const double near_mm = std::max(1.0, std::ceil(nearDepth_m * 1000.0));
     const double far_mm = std::floor(farDepth_m * 1000.0);
-    std::vector<cv::Mat1b> inBand(frames.size());
+    // Both shares over the same first frames, each compared with the frame lag after it: only
+    // their readings are tested, so only their band is needed.
+    const std::size_t pairs = frames.size() - static_cast<std::size_t>(params.farLag);
+    std::vector<cv::Mat1b> inBand(pairs);
     cv::Rect roi;
-    for (std::size_t i = 0; i < frames.size(); ++i) {
+    for (std::size_t i = 0; i < pairs; ++i) {
         cv::inRange(frames[i].depth_mm, near_mm, far_mm, inBand[i]);
         roi |= cv::boundingRect(inBand[i]);
     }
     if (roi.empty()) return out;
-    // Only the tuft's box is compared: the frame's far scenery holds no in-band reading.
+    // Only the box of the tested readings is compared (grown by the neighbourhood's pixel).
     std::vector<cv::Mat1w> padded(frames.size());
     for (std::size_t i = 0; i < frames.size(); ++i) {
         const cv::Rect grown = (roi - cv::Point(1, 1) + cv::Size(2, 2)) & cv::Rect({}, size);
@@ -97,8 +100,6 @@ TuftMotion tuftMotion(std::span<const DepthFrame> frames, float nearDepth_m, flo
             p(cv::Rect(grown.tl() - roi.tl() + cv::Point(1, 1), grown.size())));
         padded[i] = p;
     }
-    // Both shares over the same first frames, each compared with the frame lag after it.
-    const std::size_t pairs = frames.size() - static_cast<std::size_t>(params.farLag);
     const auto share = [&](int lag, int* compared) {
         long changed = 0, total = 0;
         for (std::size_t i = 0; i < pairs; ++i) {

@@ -6,9 +6,9 @@
 // by the same amount whatever the frames' distance in time; a tuft that sways changes more the
 // farther apart the frames are. So the test compares two shares: of the in-band readings of a
 // frame, those with no reading of the same depth in the 3x3 neighbourhood of a frame nearLag
-// later, and of one farLag later. Measured (simulated sensor, nominal noise, eleven presets,
-// seeds 1-3, 12 frames): still tufts 0.94-1.07, the wind preset 2.1-2.4 (README, "A tuft that
-// moves").
+// later, and of one farLag later. Measured (simulated sensor, nominal noise, seeds 1-3, 12
+// frames): the ten still presets 0.95-1.05, the wind preset at 0.6-1.0 m 2.10-2.80 (README, "A
+// tuft that moves").
 #include <span>
 #include <string>
 
