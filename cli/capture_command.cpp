@@ -26,6 +26,7 @@ struct CaptureArgs {
     modeling::CaptureOptions options;
     float tolerance_mm = 0.f;
     std::string plane = "ransac";
+    std::string fusion = "median";
     bool verbose = false;
 };
 
@@ -69,6 +70,9 @@ void runCapture(CaptureArgs& args) {
     modeling::CaptureOptions options = args.options;
     options.debugDir = args.debug;
     options.segmenter.planeMethod = planeMethod(args.plane);
+    options.segmenter.fusion = args.fusion == "nearest-recurring"
+                                   ? capture::FusionMethod::NearestRecurring
+                                   : capture::FusionMethod::Median;
     options.fit.setTolerance_m(args.tolerance_mm * 1e-3f);
 
     auto source = capture::openDepthSource(args.source, toSourceOptions(args.sourceArgs));
@@ -139,12 +143,23 @@ void addCaptureCommand(CLI::App& app) {
     cmd->add_option("--debug", args->debug,
                     "Folder for an overlay PNG per segmentation (mask, contour, cuts, blades)");
     cmd->add_option("--fuse", args->options.fusionFrames,
-                    "Frames fused (per-pixel median) per segmentation, for a still tuft; 1 = each "
+                    "Frames fused (--fusion) per segmentation, for a still tuft; 1 = each "
                     "frame alone. Measured (median IoU, simulated presets): 1 frame 0.82, 2 0.81, "
                     "3 0.85, 5 0.86; an even count has no middle reading (README, \"Fusing an "
                     "even count\")")
         ->capture_default_str()
         ->check(CLI::Range(1, 64));
+    cmd->add_option("--fusion", args->fusion,
+                    "How --fuse frames become one: median (per pixel) or nearest-recurring (per "
+                    "pixel the nearest depth that 34 % of the frames read alike, else the "
+                    "median), which keeps thin blades and tips that the median hands to the "
+                    "wall. For thin grass record 12 frames or more and pass --fuse 12 --fusion "
+                    "nearest-recurring: measured on the simulated slim grass (0.6-1.0 m), tip "
+                    "RMS 74 -> 21 mm; on leaves capture's default groups keep their tips nearer "
+                    "(1.4-4.2 against 1.4-4.4 mm), though the masks are better (README, \"Fusing "
+                    "frames by recurring readings\")")
+        ->default_val("median")
+        ->check(CLI::IsMember({"median", "nearest-recurring"}));
     cmd->add_option("--max-frames", args->options.maxFrames,
                     "Stop after this many frames (0 = all)")
         ->capture_default_str()

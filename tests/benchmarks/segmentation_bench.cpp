@@ -149,6 +149,21 @@ void BM_FusedGroupOf3(benchmark::State& state) {
     state.SetLabel(state.range(0) ? "with recurring readings" : "own readings");
 }
 
+// A window of 12 frames segmented once (capture --fuse 12), fused by the median (0) or by the
+// nearest recurring readings (1), with the window's recurring readings for the tip trails.
+void BM_FusedWindowOf12(benchmark::State& state) {
+    const std::vector<DepthFrame> frames = twelveFrames();
+    const RecurringReadings tips = recurringReadings(frames);
+    SegmenterParams params = userBand(PlaneMethod::None);
+    params.fusion = state.range(0) ? FusionMethod::NearestRecurring : FusionMethod::Median;
+    const Segmenter segmenter(params);
+    for (auto _ : state) {
+        const Segmentation s = segmenter.segment(frames, tips);
+        benchmark::DoNotOptimize(s.blades.data());
+    }
+    state.SetLabel(toString(params.fusion));
+}
+
 BENCHMARK(BM_FrontEnd_UserBand_NoPcl)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_FrontEnd_UserBand_NoPcl_StatisticalOutliers)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_FrontEnd_UserBand_Ransac)->Unit(benchmark::kMillisecond);
@@ -161,6 +176,7 @@ BENCHMARK(BM_TemporalFusion5)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_RecurringReadings12)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_TuftMotion12)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_FusedGroupOf3)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_FusedWindowOf12)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
 
 }  // namespace
 

@@ -206,8 +206,9 @@ TEST(CaptureCli, ANegativeRecurringFrameCountIsAUsageErrorNamingTheOption) {
 TEST(CaptureCli, HelpExplainsTheOptionsAndDefaults) {
     const auto r = runMeadow("capture --help");
     EXPECT_EQ(r.exitCode, 0);
-    for (const char* option : {"--out", "--glb", "--debug", "--fuse", "--max-archetypes",
-                               "--tolerance-mm", "--plane", "--recurring-frames", "--assume-still"})
+    for (const char* option :
+         {"--out", "--glb", "--debug", "--fuse", "--max-archetypes", "--tolerance-mm", "--plane",
+          "--recurring-frames", "--assume-still", "--fusion"})
         EXPECT_NE(r.output.find(option), std::string::npos) << option << " missing from:\n"
                                                             << r.output;
     // Where capture works is part of how to use it (README, "Segmentation over camera distance").
@@ -255,4 +256,28 @@ TEST(CaptureCli, ATuftThatMovesIsFoundAndModelledPerGroup) {
                                  (dir / "still.json").string());
     ASSERT_EQ(still.exitCode, 0) << still.output;
     EXPECT_EQ(still.output.find("the tuft moved"), std::string::npos) << still.output;
+}
+
+// --fusion nearest-recurring with --fuse 12: one segmentation of the twelve frames, whose blades
+// are each one archetype seen once (bamboo-leaf seed 1: 4 blades); an unknown method is a usage
+// error naming the option and its choices.
+TEST(CaptureCli, TwelveFramesFusedByRecurringReadingsAreOneSegmentation) {
+    const fs::path dir = freshTempDir("capture_fusion");
+    const fs::path rec = synthesised(dir, "--preset bamboo-leaf --seed 1 --frames 12");
+    const auto r =
+        runMeadow("capture " + rec.string() + " --fuse 12 --fusion nearest-recurring --out " +
+                  (dir / "lib.json").string());
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    const auto lib = meadow::modeling::loadArchetypeLibrary(dir / "lib.json");
+    ASSERT_EQ(lib.archetypes.size(), 4u);
+    for (const auto& a : lib.archetypes) {
+        ASSERT_EQ(a.source.seenIn.size(), 1u) << a.name;
+        EXPECT_EQ(a.source.seenIn[0].frame, 0) << a.name;
+    }
+    const auto bad = runMeadow("capture " + rec.string() + " --fusion mean --out " +
+                               (dir / "bad.json").string());
+    EXPECT_EQ(bad.exitCode, 2) << bad.output;
+    EXPECT_NE(bad.output.find("--fusion"), std::string::npos) << bad.output;
+    EXPECT_NE(bad.output.find("nearest-recurring"), std::string::npos) << bad.output;
+    EXPECT_FALSE(fs::exists(dir / "bad.json"));
 }

@@ -5,7 +5,9 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdlib>
 #include <glm/geometric.hpp>
+#include <iomanip>
 #include <iostream>
 #include <map>
 #include <opencv2/core.hpp>
@@ -83,18 +85,21 @@ struct TipErrors {
 
 // `recurring`: the tip trails also see the readings recurring over all 12 frames, as capture's
 // default (CaptureOptions::recurringFrames) does.
+// `fused`: frames per segmentation (kFusedFrames, as capture's default; kGroups * kFusedFrames:
+// one segmentation of all 12), fused as `segmenter` says.
 void measure(const std::string& preset, float distance_m, bool recurring, TipErrors& e,
-             std::uint64_t seed = 1) {
+             std::uint64_t seed = 1, const capture::SegmenterParams& segmenterParams = {},
+             int fused = kFusedFrames) {
     const Tuft t = render(preset, distance_m, seed);
     const BladeFitParams params;
-    const capture::Segmenter segmenter;
+    const capture::Segmenter segmenter(segmenterParams);
     const capture::RecurringReadings tips =
         recurring ? capture::recurringReadings(t.frames) : capture::RecurringReadings{};
     std::vector<BladeObservation> observations;
     std::vector<int> truth;
-    for (int g = 0; g < kGroups; ++g) {
-        const std::span<const capture::DepthFrame> group(t.frames.data() + g * kFusedFrames,
-                                                         kFusedFrames);
+    for (int g = 0; g < kGroups * kFusedFrames / fused; ++g) {
+        const std::span<const capture::DepthFrame> group(t.frames.data() + g * fused,
+                                                         static_cast<std::size_t>(fused));
         const capture::Segmentation seg = segmenter.segment(group, tips);
         for (std::size_t b = 0; b < seg.blades.size(); ++b) {
             const auto& flags = seg.blades[b].flags;
@@ -119,7 +124,7 @@ void measure(const std::string& preset, float distance_m, bool recurring, TipErr
     for (const auto& track : tracks) {
         bool oneBlade = truth[track.front()] != 0;
         for (const std::size_t i : track) oneBlade = oneBlade && truth[i] == truth[track.front()];
-        e.tracksOfOneBlade += oneBlade && track.size() == kGroups;
+        e.tracksOfOneBlade += oneBlade && track.size() * fused == kGroups * kFusedFrames;
         if (!oneBlade) continue;
         // Fitted as capture fits a track.
         const double d = tipError_mm(trackSkeleton(observations, track), truth[track.front()]);
@@ -185,6 +190,35 @@ TEST(BladeTracksAccuracy, ShrubLeavesFromTwelveFramesMeetTheTipTarget) {
     const double rms = std::sqrt(e.trackedSq_mm2 / e.tracked);
     std::cout << "shrub-leaf tracked tip RMS with recurring readings: " << rms << " mm\n";
     EXPECT_LE(rms, kTipTarget_mm);
+}
+
+// One segmentation of all 12 frames fused by their nearest recurring readings (capture --fuse 12
+// --fusion nearest-recurring) against capture's default, 4 groups of 3 frames fused by their
+// median, each blade fitted to the mean of its 4 views; both with the tip trails' recurring
+// readings. Seeds 1-2, 0.6 / 0.8 / 1.0 m. Printed for the README ("Fusing frames by recurring
+// readings"), not asserted.
+TEST(BladeTracksAccuracy, PrintsTwelveFramesFusedByRecurringReadingsAgainstFourGroups) {
+    if (!std::getenv("MEADOW_TRACKS_FUSION")) GTEST_SKIP() << "set MEADOW_TRACKS_FUSION=1";
+    capture::SegmenterParams recurringFusion;
+    recurringFusion.fusion = capture::FusionMethod::NearestRecurring;
+    std::cout << "| preset | 4 groups of 3, median: blades fitted, tip RMS (mm) | 1 group of 12, "
+                 "nearest recurring |\n|---|---|---|\n";
+    for (const std::string preset :
+         {"slim-grass", "quadratic-leaf", "shrub-leaf", "bamboo-leaf", "sharp-tip"}) {
+        TipErrors groups, one;
+        for (const std::uint64_t seed : {1u, 2u})
+            for (const float distance_m : {0.6f, 0.8f, 1.0f}) {
+                measure(preset, distance_m, true, groups, seed);
+                measure(preset, distance_m, true, one, seed, recurringFusion,
+                        kGroups * kFusedFrames);
+            }
+        const auto rms = [](const TipErrors& x) {
+            return x.tracked ? std::sqrt(x.trackedSq_mm2 / x.tracked) : 0.0;
+        };
+        std::cout << std::fixed << std::setprecision(2) << "| " << preset << " | " << groups.tracked
+                  << " of " << groups.trueBlades << ", " << rms(groups) << " | " << one.tracked
+                  << " of " << one.trueBlades << ", " << rms(one) << " |" << std::endl;
+    }
 }
 
 }  // namespace

@@ -25,6 +25,15 @@ std::string toString(PlaneMethod m) {
     }
     return "unknown";
 }
+std::string toString(FusionMethod m) {
+    switch (m) {
+        case FusionMethod::Median:
+            return "median";
+        case FusionMethod::NearestRecurring:
+            return "nearest-recurring";
+    }
+    return "unknown";
+}
 std::string toString(OutlierMethod m) {
     switch (m) {
         case OutlierMethod::None:
@@ -77,6 +86,7 @@ std::string SegmenterParams::problem() const {
         {"outlierDepthTolerance_m", outlierDepthTolerance_m, 1e-4f, 1.f},
         {"statisticalStddevMul", statisticalStddevMul, 0.f, 100.f},
         {"minValidFrameFraction", minValidFrameFraction, 0.f, 1.f},
+        {"fusionRecurringShare", fusionRecurringShare, 0.f, 1.f},
         {"baseBandFraction", baseBandFraction, 0.f, 1.f},
         {"smoothingSigma_px", smoothingSigma_px, 0.f, 1000.f},
         {"edgeSmoothingSigma_px", edgeSmoothingSigma_px, 0.f, 20.f},
@@ -126,6 +136,7 @@ std::string SegmenterParams::problem() const {
         {"tipTrailGap_px", tipTrailGap_px, 1, 16},
         {"tipTrailMaxLength_px", tipTrailMaxLength_px, 0, 4096},
         {"fragmentMaxArea_px", fragmentMaxArea_px, 0, 1 << 28},
+        {"fusionAgreement_mm", fusionAgreement_mm, 0, 1000},
     };
     for (const auto& r : ints)
         if (r.value < r.lo || r.value > r.hi)
@@ -388,9 +399,8 @@ Segmentation Segmenter::segment(std::span<const DepthFrame> frames,
         return impl_->fromDepth(frames[0].depth_mm, frames[0].intrinsics, std::move(out),
                                 tips.depth_mm);
     cv::Mat1w fused;
-    impl_->stage(out, "temporal fusion", nullptr, [&](StageReport& r) {
-        fused = seg::fuseFrames(frames, impl_->params.minValidFrameFraction, r);
-    });
+    impl_->stage(out, "temporal fusion", nullptr,
+                 [&](StageReport& r) { fused = seg::fuseFrames(frames, impl_->params, r); });
     return impl_->fromDepth(fused, frames[0].intrinsics, std::move(out), tips.depth_mm);
 }
 

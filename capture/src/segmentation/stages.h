@@ -23,8 +23,9 @@ inline cv::Rect grownWithin(const cv::Rect& rect, int by_px, const cv::Rect& wit
 
 // temporal_fusion.cpp: per-pixel median of the non-zero readings (of an even count, the nearer or
 // the farther middle one in a checkerboard); pixels valid in fewer than minValidFrameFraction of
-// the frames read 0.
-cv::Mat1w fuseFrames(std::span<const DepthFrame> frames, float minValidFrameFraction,
+// the frames read 0. With FusionMethod::NearestRecurring, the nearest recurring reading
+// (recurring_readings.h) replaces the median wherever one recurs.
+cv::Mat1w fuseFrames(std::span<const DepthFrame> frames, const SegmenterParams& params,
                      StageReport& report);
 
 // depth_band_mask.cpp

@@ -50,7 +50,18 @@ enum class BladeMaskMethod {
             // NearestContour (needs ReferencePoint::BasePoint; with the centre it is
             // NearestContour)
 };
+// How several frames of a still tuft become one depth image (temporal fusion).
+enum class FusionMethod {
+    Median,  // per-pixel median of the valid readings (Fan & Sheng 2017)
+    // Per pixel, the nearest depth that at least fusionRecurringShare of the frames read within
+    // fusionAgreement_mm of one another (recurring_readings.h); the median where none recurs.
+    // Lateral noise hands a blade under ~2 px wide to the wall behind in half the frames or
+    // more, a different half each time, so the median keeps the wall there.
+    NearestRecurring,
+};
+
 std::string toString(PlaneMethod);
+std::string toString(FusionMethod);
 std::string toString(OutlierMethod);
 std::string toString(ReferencePoint);
 
@@ -96,6 +107,10 @@ struct SegmenterParams {
 
     // --- Temporal fusion: a pixel needs a reading in at least this share of the frames.
     float minValidFrameFraction = 0.5f;
+    FusionMethod fusion = FusionMethod::Median;
+    // NearestRecurring: the share of the frames (at least 2 of them) that must agree on a depth.
+    float fusionRecurringShare = 0.34f;
+    int fusionAgreement_mm = 10;
 
     // --- Morphological clean-up.
     int closeKernel_px = 3;  // 0 or 1 = no closing; closing bridges 1 px dropouts
