@@ -8,14 +8,12 @@
 #include <vector>
 
 #include "meadow/capture/error.h"
+#include "segmentation/sorted_readings.h"
 
 namespace meadow::capture {
 
 namespace {
 constexpr int kMaxAgreement_mm = 1000;
-// Stands for "no reading" while sorting: farther than any depth a uint16 millimetre frame holds
-// but this one, which no sensor reports.
-constexpr std::uint16_t kNoReading = 0xffff;
 }  // namespace
 
 std::string RecurringParams::problem() const {
@@ -46,14 +44,23 @@ RecurringReadings recurringReadings(std::span<const DepthFrame> frames,
     out.neededFrames =
         std::max(params.minFrames,
                  static_cast<int>(std::ceil(params.minShare * static_cast<float>(out.frames))));
-    out.depth_mm = cv::Mat1w(size, std::uint16_t{0});
-    const auto needed = static_cast<std::size_t>(out.neededFrames);
-    if (needed > frames.size()) return out;  // too few frames for anything to recur
-    // Sorted per pixel, nearest first, by a sorting network over whole images (Batcher's
-    // odd-even merge sort, each comparator an element-wise min and max): the per-pixel sort it
-    // replaced cost 30 ms for 12 frames at 640x480, five times this. No reading sorts last.
+    if (static_cast<std::size_t>(out.neededFrames) > frames.size()) {
+        out.depth_mm = cv::Mat1w(size, std::uint16_t{0});  // too few frames for anything to recur
+        return out;
+    }
+    out.depth_mm = segmentation::nearestRecurring(segmentation::sortedReadings(frames),
+                                                  out.neededFrames, params.agreement_mm);
+    out.recurringPixels = cv::countNonZero(out.depth_mm);
+    return out;
+}
+
+}  // namespace meadow::capture
+
+namespace meadow::capture::segmentation {
+
+std::vector<cv::Mat1w> sortedReadings(std::span<const DepthFrame> frames) {
     const std::size_t n = frames.size();
-    // cv::Mat, not Mat1w: std::min would take a Mat1w for a comparator.
+    // cv::Mat while sorting, not Mat1w: std::min would take a Mat1w for a comparator.
     std::vector<cv::Mat> sorted(n);
     for (std::size_t i = 0; i < n; ++i) {
         sorted[i] = frames[i].depth_mm.clone();
@@ -75,21 +82,27 @@ RecurringReadings recurringReadings(std::span<const DepthFrame> frames,
                 for (std::size_t i = 0; i < std::min(k, padded - j - k); ++i)
                     if ((i + j) / (2 * p) == (i + j + k) / (2 * p) && i + j + k < n)
                         exchange(i + j, i + j + k);
+    return {sorted.begin(), sorted.end()};
+}
+
+cv::Mat1w nearestRecurring(const std::vector<cv::Mat1w>& sorted, int needed, int agreement_mm) {
+    cv::Mat1w out(sorted.front().size(), std::uint16_t{0});
+    const auto n = sorted.size(), run = static_cast<std::size_t>(needed);
+    if (run < 1 || run > n) return out;
     // The nearest run of `needed` readings that agree: a tip in front of the wall is the nearer
     // surface, and the wall's readings agree with one another too. Runs are tried farthest first
     // so that the nearest one that agrees is written last.
     cv::Mat spread;
     cv::Mat1b agree, read;
-    for (std::size_t i = n - needed + 1; i-- > 0;) {
-        const cv::Mat& last = sorted[i + needed - 1];
+    for (std::size_t i = n - run + 1; i-- > 0;) {
+        const cv::Mat1w& last = sorted[i + run - 1];
         cv::subtract(last, sorted[i], spread);
-        cv::compare(spread, params.agreement_mm, agree, cv::CMP_LE);
+        cv::compare(spread, agreement_mm, agree, cv::CMP_LE);
         cv::compare(last, kNoReading, read, cv::CMP_NE);
         agree &= read;
-        sorted[i + (needed - 1) / 2].copyTo(out.depth_mm, agree);
+        sorted[i + (run - 1) / 2].copyTo(out, agree);
     }
-    out.recurringPixels = cv::countNonZero(out.depth_mm);
     return out;
 }
 
-}  // namespace meadow::capture
+}  // namespace meadow::capture::segmentation

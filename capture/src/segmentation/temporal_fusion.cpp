@@ -15,9 +15,11 @@
 // alike in a given share of the frames (README, "Fusing frames by recurring readings").
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <opencv2/core.hpp>
+#include <vector>
 
-#include "meadow/capture/recurring_readings.h"
+#include "segmentation/sorted_readings.h"
 #include "segmentation/stages.h"
 
 namespace meadow::capture::segmentation {
@@ -32,21 +34,19 @@ constexpr int kMinRecurringFusionFrames = 2;
 
 // Where a depth recurs over the frames, the nearest such depth replaces the median: a thin blade
 // read in 5 of 12 frames is there, though the wall behind it holds the median.
-void takeNearestRecurring(std::span<const DepthFrame> frames, const SegmenterParams& params,
+void takeNearestRecurring(const std::vector<cv::Mat1w>& sorted, const SegmenterParams& params,
                           cv::Mat1w& fused, StageReport& report) {
-    RecurringParams recurring;
-    recurring.minShare = params.fusionRecurringShare;
-    recurring.minFrames = kMinRecurringFusionFrames;
-    recurring.agreement_mm = params.fusionAgreement_mm;
-    const RecurringReadings nearest = recurringReadings(frames, recurring);
-    const cv::Mat1b recurs = nearest.depth_mm > 0;
-    const int nearer = cv::countNonZero(recurs & ((fused == 0) | (nearest.depth_mm < fused)));
-    nearest.depth_mm.copyTo(fused, recurs);
-    report.notes.push_back(std::to_string(nearest.recurringPixels) + " px read alike (within " +
+    const int needed = std::max(kMinRecurringFusionFrames,
+                                static_cast<int>(std::ceil(params.fusionRecurringShare *
+                                                           static_cast<float>(sorted.size()))));
+    const cv::Mat1w nearest = nearestRecurring(sorted, needed, params.fusionAgreement_mm);
+    const cv::Mat1b recurs = nearest > 0;
+    const int nearer = cv::countNonZero(recurs & ((fused == 0) | (nearest < fused)));
+    nearest.copyTo(fused, recurs);
+    report.notes.push_back(std::to_string(cv::countNonZero(recurs)) + " px read alike (within " +
                            std::to_string(params.fusionAgreement_mm) + " mm) in at least " +
-                           std::to_string(nearest.neededFrames) +
-                           " frames take the nearest such depth; " + std::to_string(nearer) +
-                           " of them nearer than their median");
+                           std::to_string(needed) + " frames take the nearest such depth; " +
+                           std::to_string(nearer) + " of them nearer than their median");
 }
 
 }  // namespace
@@ -54,35 +54,35 @@ void takeNearestRecurring(std::span<const DepthFrame> frames, const SegmenterPar
 cv::Mat1w fuseFrames(std::span<const DepthFrame> frames, const SegmenterParams& params,
                      StageReport& report) {
     const cv::Size size = frames[0].depth_mm.size();
-    const int needed = std::max(1, static_cast<int>(std::ceil(params.minValidFrameFraction *
-                                                              static_cast<float>(frames.size()))));
+    const int n = static_cast<int>(frames.size());
+    const int needed = std::max(
+        1, static_cast<int>(std::ceil(params.minValidFrameFraction * static_cast<float>(n))));
+    const std::vector<cv::Mat1w> sorted = sortedReadings(frames);
     cv::Mat1w fused(size, 0);
-    std::vector<std::uint16_t> values;
-    values.reserve(frames.size());
+    std::vector<const std::uint16_t*> nth(static_cast<std::size_t>(n));
     int tooFew = 0;
-    for (int y = 0; y < size.height; ++y)
+    for (int y = 0; y < size.height; ++y) {
+        for (int k = 0; k < n; ++k) nth[static_cast<std::size_t>(k)] = sorted[k][y];
+        auto* out = fused[y];
         for (int x = 0; x < size.width; ++x) {
-            values.clear();
-            for (const auto& f : frames)
-                if (const auto d = f.depth_mm(y, x); d != 0) values.push_back(d);
-            if (values.empty()) continue;
-            if (static_cast<int>(values.size()) < needed) {
+            int valid = 0;  // the readings sort first, no reading last
+            while (valid < n && nth[static_cast<std::size_t>(valid)][x] != kNoReading) ++valid;
+            if (valid == 0) continue;
+            if (valid < needed) {
                 ++tooFew;
                 continue;
             }
-            std::size_t middle = values.size() / 2;
-            if (values.size() % 2 == 0 && (x + y) % 2 == 0) --middle;  // the nearer of the two
-            const auto mid = values.begin() + static_cast<std::ptrdiff_t>(middle);
-            std::nth_element(values.begin(), mid, values.end());
-            fused(y, x) = *mid;
+            int middle = valid / 2;
+            if (valid % 2 == 0 && (x + y) % 2 == 0) --middle;  // the nearer of the two
+            out[x] = nth[static_cast<std::size_t>(middle)][x];
         }
+    }
     report.droppedPixels = tooFew;
-    report.keptPixels = cv::countNonZero(fused);
-    report.notes.push_back("median of " + std::to_string(frames.size()) + " frames; " +
-                           std::to_string(tooFew) + " px dropped: valid in fewer than " +
-                           std::to_string(needed) + " frames");
+    report.notes.push_back("median of " + std::to_string(n) + " frames; " + std::to_string(tooFew) +
+                           " px dropped: valid in fewer than " + std::to_string(needed) +
+                           " frames");
     if (params.fusion == FusionMethod::NearestRecurring)
-        takeNearestRecurring(frames, params, fused, report);
+        takeNearestRecurring(sorted, params, fused, report);
     report.keptPixels = cv::countNonZero(fused);
     return fused;
 }
