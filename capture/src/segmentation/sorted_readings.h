@@ -7,7 +7,6 @@
 #include <vector>
 
 #include "meadow/capture/depth_frame.h"
-#include "meadow/capture/recurring_readings.h"
 
 namespace meadow::capture::segmentation {
 
