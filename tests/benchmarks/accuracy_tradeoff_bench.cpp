@@ -15,6 +15,7 @@
 //                                  precision, median IoU at nominal noise
 // Charts are drawn by tools/chart.sh (gnuplot). Times are wall time (std::chrono::steady_clock),
 // median over repetitions, one thread; the thread's CPU time is written beside it because the
+#include <algorithm>
 #include <chrono>
 #include <cstdlib>
 #include <filesystem>
@@ -53,9 +54,15 @@ namespace {
 
 namespace fs = std::filesystem;
 
+// What --only can name.
+const std::vector<std::string> kTables{"segmentation-accuracy", "capture-tradeoff",
+                                       "modeling-tradeoff",     "modeling-accuracy",
+                                       "segmentation-distance", "modeling-groups"};
+
 int run(int argc, char** argv) {
     fs::path out = "docs/measurements";
     bool quick = false, verbose = false;
+    std::string only;  // one table's name, or every table
     for (int i = 1; i < argc; ++i) {
         const std::string arg = argv[i];
         if (arg == "--quick") {
@@ -64,12 +71,18 @@ int run(int argc, char** argv) {
             verbose = true;
         } else if (arg == "--out" && i + 1 < argc) {
             out = argv[++i];
+        } else if (arg == "--only" && i + 1 < argc &&
+                   std::find(kTables.begin(), kTables.end(), argv[i + 1]) != kTables.end()) {
+            only = argv[++i];
         } else {
-            std::cerr << "usage: " << argv[0] << " [--out DIR] [--quick] [--verbose]\n"
+            std::cerr << "usage: " << argv[0] << " [--out DIR] [--quick] [--verbose] [--only T]\n"
                       << "  --out DIR  where the CSV, MD and PNG files go (default "
                          "docs/measurements)\n"
                       << "  --quick    fewer presets, seeds and repetitions: a smoke run\n"
-                      << "  --verbose  one line per fitted blade (modeling accuracy)\n";
+                      << "  --verbose  one line per fitted blade (modeling accuracy)\n"
+                      << "  --only T   one table (its files alone are rewritten):";
+            for (const std::string& t : kTables) std::cerr << ' ' << t;
+            std::cerr << '\n';
             return 2;
         }
     }
@@ -85,21 +98,34 @@ int run(int argc, char** argv) {
                    0) +
                " s";
     };
-    segmentationAccuracy(plan, out);
-    std::cout << "[" << elapsed() << "]\n";
-    const std::vector<Scene> scenes = tradeoffScenes(plan);
-    captureTradeoff(plan, scenes, out);
-    std::cout << "[" << elapsed() << "]\n";
-    Fig12Input fig12Input;
-    modelingAccuracy(plan, out, fig12Input);
-    std::cout << "[" << elapsed() << "]\n";
-    modelingTradeoff(plan, scenes, out);
-    std::cout << "[" << elapsed() << "]\n";
-    fig12(fig12Input, out);
-    std::cout << "[" << elapsed() << "]\n";
-    segmentationOverDistance(plan, out);
-    std::cout << "[" << elapsed() << "]\n";
-    modelingOverGroups(plan, out);
+    const auto wanted = [&](const char* table) { return only.empty() || only == table; };
+    const auto ran = [&] { std::cout << "[" << elapsed() << "]\n"; };
+    if (wanted("segmentation-accuracy")) {
+        segmentationAccuracy(plan, out);
+        ran();
+    }
+    if (wanted("capture-tradeoff") || wanted("modeling-tradeoff")) {
+        const std::vector<Scene> scenes = tradeoffScenes(plan);
+        if (wanted("capture-tradeoff")) {
+            captureTradeoff(plan, scenes, out);
+            ran();
+        }
+        if (wanted("modeling-tradeoff")) {
+            modelingTradeoff(plan, scenes, out);
+            ran();
+        }
+    }
+    if (wanted("modeling-accuracy")) {  // Fig. 12 runs on the skeletons its fits extracted
+        Fig12Input fig12Input;
+        modelingAccuracy(plan, out, fig12Input);
+        fig12(fig12Input, out);
+        ran();
+    }
+    if (wanted("segmentation-distance")) {
+        segmentationOverDistance(plan, out);
+        ran();
+    }
+    if (wanted("modeling-groups")) modelingOverGroups(plan, out);
     std::cout << "done in " << elapsed() << '\n';
     return 0;
 }

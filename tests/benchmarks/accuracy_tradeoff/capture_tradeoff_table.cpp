@@ -14,7 +14,10 @@ using capture::Segmentation;
 using capture::SegmenterParams;
 using modeling::CaptureOptions;
 
-const std::vector<int> kFusionFrames{1, 2, 3, 5};
+const std::vector<int> kFusionFrames{1, 2, 3, 5, 12};
+// Fused by their nearest recurring readings (--fusion nearest-recurring); below 5 frames the
+// share is a count of 2 and the median does as well.
+const std::vector<int> kRecurringFusionFrames{5, 12};
 const std::vector<float> kSmoothingSigmas_px{0.f, 1.f, 2.f, 4.f, 8.f};
 
 }  // namespace
@@ -31,6 +34,11 @@ void captureTradeoff(const Plan& plan, const std::vector<Scene>& scenes, const f
     std::vector<Config> configs;
     for (int f : kFusionFrames)
         configs.push_back({"fusion-frames", std::to_string(f), defaults.segmenter, f});
+    for (int f : kRecurringFusionFrames) {
+        SegmenterParams p = defaults.segmenter;
+        p.fusion = capture::FusionMethod::NearestRecurring;
+        configs.push_back({"recurring-fusion-frames", std::to_string(f), p, f});
+    }
     for (float sigma : kSmoothingSigmas_px) {
         SegmenterParams p = defaults.segmenter;
         p.smoothingSigma_px = sigma;

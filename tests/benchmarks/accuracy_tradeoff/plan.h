@@ -14,7 +14,7 @@ inline constexpr float kNominalNoise = 1.f;
 inline const std::vector<float> kModelingDistances_m{0.6f, 0.8f, 1.0f};
 // `meadow synth --distance` allows 0.5-1.2 m.
 inline const std::vector<float> kSegmentationDistances_m{0.5f, 0.6f, 0.8f, 1.0f, 1.2f};
-inline constexpr int kMaxFusionFrames = 5;  // frames rendered per trade-off scene
+inline constexpr int kMaxFusionFrames = 12;  // frames rendered per trade-off scene
 inline constexpr float kMillimetresPerMetre = 1000.f;
 inline constexpr double kPercent = 100.0;
 
