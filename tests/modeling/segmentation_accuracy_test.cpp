@@ -226,10 +226,10 @@ Score run(const std::string& presetName, float noiseScale, std::uint64_t seed,
 // The brief's target, not met yet (see README's segmentation table), on one frame: slim-grass
 // blades (1.4-3.6 px wide at 0.8 m) fall apart under the sensor's lateral noise and lie along or
 // across one another (recall 0.22; from 12 frames fused by their nearest recurring readings 0.47
-// over seeds 1-5, where a perfect partition of the same mask would match 0.91), sharp-tip's smallest blade lies
-// along a neighbour at its depth and comes out merged with it (recall 0.83), and on one frame the
-// leaves reach a median IoU of 0.81-0.92 (quadratic and bamboo meet 0.85; all four do from 12
-// frames fused by recurring readings:
+// over seeds 1-5, where a perfect partition of the same mask would match 0.91), sharp-tip's
+// smallest blade lies along a neighbour at its depth and comes out merged with it (recall 0.83),
+// and on one frame the leaves reach a median IoU of 0.81-0.92 (quadratic and bamboo meet 0.85; all
+// four do from 12 frames fused by recurring readings:
 // LeavesFromTwelveFramesFusedByRecurringReadingsMeetTheIouTarget). Disabled until then.
 TEST(SegmentationAccuracy, DISABLED_BladeTypePresetsAtNominalNoiseMeetRecallAndIouTargets) {
     for (const auto& preset : kBladeTypePresets) {
