@@ -282,7 +282,7 @@ TEST(Segmenter, FusingAnEvenCountKeepsAnEdgeThatMovedWhereItIsOnAverage) {
 // to the wall in the others, different ones each time), and edge speckle beside it read as blade
 // in 3: the median keeps the wall over the blade; the nearest recurring reading (34 % of the
 // frames by default: 5 of 12) keeps the blade and still not the speckle.
-TEST(Segmenter, NearestRecurringFusionKeepsABladeReadInAThirdOfTheFrames) {
+TEST(Segmenter, NearestRecurringFusionKeepsABladeReadInFiveOfTwelveFrames) {
     constexpr int kSize = 32, kFrames = 12;
     std::vector<DepthFrame> frames(kFrames);
     for (int k = 0; k < kFrames; ++k) {
