@@ -5,6 +5,7 @@
 #include <memory>
 #include <sstream>
 #include <string>
+#include <vector>
 
 #include "commands.h"
 #include "meadow/capture/depth_source.h"
@@ -26,7 +27,7 @@ struct CaptureArgs {
     modeling::CaptureOptions options;
     float tolerance_mm = 0.f;
     std::string plane = "ransac";
-    std::string fusion = "median";
+    std::string fusion = capture::toString(capture::FusionMethod::Median);
     bool verbose = false;
 };
 
@@ -55,6 +56,23 @@ capture::PlaneMethod planeMethod(const std::string& name) {
     return capture::PlaneMethod::Ransac;
 }
 
+// --fusion takes the segmenter's own names for its fusion methods (capture::toString).
+const std::vector<capture::FusionMethod> kFusionMethods{capture::FusionMethod::Median,
+                                                        capture::FusionMethod::NearestRecurring};
+
+std::vector<std::string> fusionNames() {
+    std::vector<std::string> names;
+    for (const auto m : kFusionMethods) names.push_back(capture::toString(m));
+    return names;
+}
+
+// The method named (the option's check has already refused any other name).
+capture::FusionMethod fusionMethod(const std::string& name) {
+    for (const auto m : kFusionMethods)
+        if (capture::toString(m) == name) return m;
+    return capture::FusionMethod::Median;
+}
+
 // A user band needs both edges, near below far (the segmenter's own check names its fields).
 void checkBand(float near_m, float far_m) {
     if ((near_m > 0.f || far_m > 0.f) && !(near_m < far_m)) {
@@ -70,9 +88,7 @@ void runCapture(CaptureArgs& args) {
     modeling::CaptureOptions options = args.options;
     options.debugDir = args.debug;
     options.segmenter.planeMethod = planeMethod(args.plane);
-    options.segmenter.fusion = args.fusion == "nearest-recurring"
-                                   ? capture::FusionMethod::NearestRecurring
-                                   : capture::FusionMethod::Median;
+    options.segmenter.fusion = fusionMethod(args.fusion);
     options.fit.setTolerance_m(args.tolerance_mm * 1e-3f);
 
     auto source = capture::openDepthSource(args.source, toSourceOptions(args.sourceArgs));
@@ -158,8 +174,8 @@ void addCaptureCommand(CLI::App& app) {
                     "RMS 74 -> 21 mm; on leaves capture's default groups keep their tips nearer "
                     "(1.4-4.2 against 1.4-4.4 mm), though the masks are better (README, \"Fusing "
                     "frames by recurring readings\")")
-        ->default_val("median")
-        ->check(CLI::IsMember({"median", "nearest-recurring"}));
+        ->capture_default_str()
+        ->check(CLI::IsMember(fusionNames()));
     cmd->add_option("--max-frames", args->options.maxFrames,
                     "Stop after this many frames (0 = all)")
         ->capture_default_str()
