@@ -8,9 +8,10 @@
 // MEADOW_SEGMENTATION_VERBOSE=1, a difference image per frame (missed red, extra blue, given to
 // another blade yellow, in-band readings the mask left out green) and where the pixels went;
 // MEADOW_SEGMENTATION_ABLATION=1 prints recall / median IoU with one sensor noise term off at a
-// time (README: where the IoU goes); MEADOW_SEGMENTATION_ORACLE=1 has the floor test print the
-// median IoU each preset would reach if every found pixel on a true blade went to that blade
-// (what a perfect partition of the found mask would give).
+// time (README: where the IoU goes); MEADOW_SEGMENTATION_ORACLE=1 has the floor test and the
+// fusion table print the recall and median IoU each preset would reach if every found pixel on a
+// true blade went to that blade (what a perfect partition of the found mask would give): where
+// that recall is 1, the mask holds every blade and the partition loses them.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -61,6 +62,11 @@ struct Score {
         return v[v.size() / 2];
     }
     [[nodiscard]] double medianIou() const { return median(iou); }
+    [[nodiscard]] double oracleRecall() const {
+        const auto n = std::count_if(oracleIou.begin(), oracleIou.end(),
+                                     [](double x) { return x >= kMatchIou; });
+        return oracleIou.empty() ? 0.0 : double(n) / static_cast<double>(oracleIou.size());
+    }
 };
 
 // Greedy one-to-one matching by IoU over every (true, found) pair.
@@ -258,7 +264,8 @@ TEST(SegmentationAccuracy, LeafPresetsAtNominalNoiseKeepTodaysAccuracy) {
         std::cout << "  " << preset << ": recall " << total.recall() << " precision "
                   << total.precision() << " median IoU " << total.medianIou();
         if (!total.oracleIou.empty())
-            std::cout << ", with a perfect partition " << Score::median(total.oracleIou);
+            std::cout << ", with a perfect partition recall " << total.oracleRecall()
+                      << " median IoU " << Score::median(total.oracleIou);
         std::cout << '\n';
     }
 }
@@ -453,7 +460,11 @@ TEST(SegmentationAccuracy, PrintsFusionTable) {
                 for (int seed = 1; seed <= seeds; ++seed)
                     total.add(run(preset, 1.0f, static_cast<std::uint64_t>(seed), params, fused));
                 std::cout << std::fixed << std::setprecision(2) << ' ' << total.recall() << " / "
-                          << total.medianIou() << " |";
+                          << total.medianIou();
+                if (!total.oracleIou.empty())
+                    std::cout << " (perfect partition " << total.oracleRecall() << " / "
+                              << Score::median(total.oracleIou) << ")";
+                std::cout << " |";
             }
             std::cout << std::endl;
         }
