@@ -5,7 +5,7 @@
 set -euo pipefail
 meadow=$1
 here=$(cd "$(dirname "$0")" && pwd)
-out=${2:-$here/../out/demo}
+out=${2:-$(cd "$here/.." && pwd)/out/demo}
 mkdir -p "$out"
 recording=$here/recordings/quadratic-leaf
 
