@@ -245,8 +245,9 @@ void addCaptureCommand(CLI::App& app) {
         "motion (the test: readings changed " +
             std::to_string(capture::MotionParams{}.farLag) +
             " frames apart against 1 apart; a tuft that moves from " +
-            std::to_string(capture::MotionParams{}.movedRatio).substr(0, 3) +
-            "x, still tufts measured 0.95-1.05x, wind 2.1-2.8x)");
+            std::to_string(capture::MotionParams{}.movedRatio).substr(0, 3) + "x and " +
+            std::to_string(std::lround(100.0 * capture::MotionParams{}.minMovedShare)) +
+            " % of the readings more, still tufts measured 0.95-1.05x, wind 2.1-2.8x)");
     cmd->add_flag(
         "--keep-flagged", args->options.keepFlagged,
         "Also model blades the segmenter flagged (overlapping, curling, too thin, base hidden)");

@@ -19,6 +19,9 @@ std::string MotionParams::problem() const {
         return "MotionParams::agreement_mm must be >= 0, got " + std::to_string(agreement_mm);
     if (!std::isfinite(movedRatio) || movedRatio <= 1.f)
         return "MotionParams::movedRatio must be above 1, got " + std::to_string(movedRatio);
+    if (!std::isfinite(minMovedShare) || minMovedShare < 0.f || minMovedShare > 1.f)
+        return "MotionParams::minMovedShare must be in [0, 1], got " +
+               std::to_string(minMovedShare);
     return {};
 }
 
@@ -28,16 +31,19 @@ double TuftMotion::ratio() const {
 }
 
 bool TuftMotion::moved(const MotionParams& params) const {
-    return measured && ratio() >= params.movedRatio;
+    return measured && ratio() >= params.movedRatio &&
+           farChanged - nearChanged >= params.minMovedShare;
 }
 
 std::string TuftMotion::summary(const MotionParams& params) const {
     if (!measured) return "motion not measured (too few frames or no reading in the band)";
-    char line[160];
+    char line[200];
     std::snprintf(line, sizeof line,
-                  "changed readings %.1f %% %d frame(s) apart, %.1f %% %d apart (%.1fx; a still "
-                  "tuft about 1x)",
-                  100.0 * nearChanged, params.nearLag, 100.0 * farChanged, params.farLag, ratio());
+                  "changed readings %.1f %% %d frame(s) apart, %.1f %% %d apart (%.1fx, %+.1f "
+                  "points; a still tuft about 1x, a moving one from %.1fx and %+.1f)",
+                  100.0 * nearChanged, params.nearLag, 100.0 * farChanged, params.farLag, ratio(),
+                  100.0 * (farChanged - nearChanged), params.movedRatio,
+                  100.0 * params.minMovedShare);
     return line;
 }
 
