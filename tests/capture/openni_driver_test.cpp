@@ -168,6 +168,9 @@ TEST(OpenNiDriver, BrokenRecordingIsOneClearError) {
 }
 TEST(OpenNiDriver, MissingDriverFolderIsOneClearError) {
     SKIP_UNLESS_PRIVATE_FOLDER();
+    // The child opens the real recording; without it the child skips, and its "[  SKIPPED ]"
+    // line would have ctest report this test's failed expectations as a skip.
+    if (!fs::exists(kRealOni)) GTEST_SKIP() << "shared data absent: " << kRealOni;
     // A library folder with OpenNI2 but no OpenNI2/Drivers beside it.
     const fs::path dir = freshDir("nodrivers");
     fs::copy_file(kPrivateFolder / "lib/libOpenNI2.so.0", dir / "libOpenNI2.so.0");
