@@ -18,6 +18,7 @@
 #include "meadow/capture/depth_source.h"
 #include "meadow/capture/error.h"
 #include "meadow/capture/recording.h"
+#include "shared_data.h"
 #include "test_util.h"
 
 namespace fs = std::filesystem;
@@ -26,7 +27,7 @@ using namespace meadow::capture;
 namespace {
 
 const fs::path kPrivateFolder = fs::path(MEADOW_BINARY_DIR) / "openni2";
-const fs::path kRealOni = fs::path(MEADOW_SHARED_DATA_DIR) / "real/oni-3dj-room/test.oni";
+const fs::path kRealOni = meadow::test::realOniRecording();
 constexpr const char* kChildVariable = "MEADOW_OPENNI_TEST_CHILD";
 
 bool inChild() { return std::getenv(kChildVariable) != nullptr; }

@@ -13,6 +13,7 @@
 
 #include "meadow/capture/depth_source.h"
 #include "meadow/capture/error.h"
+#include "shared_data.h"
 #include "test_util.h"
 
 namespace fs = std::filesystem;
@@ -20,7 +21,7 @@ using namespace meadow::capture;
 
 namespace {
 
-const fs::path kRealOni = fs::path(MEADOW_SHARED_DATA_DIR) / "real/oni-3dj-room/test.oni";
+const fs::path kRealOni = meadow::test::realOniRecording();
 
 fs::path freshDir(const std::string& name) { return meadow::test::freshTempDir("openni_" + name); }
 

@@ -10,12 +10,13 @@
 #include "../../capture/src/segmentation/stages.h"
 #include "meadow/capture/depth_source.h"
 #include "meadow/capture/segmenter.h"
+#include "shared_data.h"
 
 namespace meadow::capture {
 namespace {
 
 namespace fs = std::filesystem;
-const fs::path kRealOni = fs::path(MEADOW_SHARED_DATA_DIR) / "real/oni-3dj-room/test.oni";
+const fs::path kRealOni = meadow::test::realOniRecording();
 
 // A drawn fan moved left so that its leftmost blade ends `tipToBorder_px` from the left border;
 // the columns it leaves on the right repeat the last one.

@@ -12,6 +12,7 @@
 
 #include "meadow/capture/depth_source.h"
 #include "meadow/capture/error.h"
+#include "shared_data.h"
 
 namespace meadow::capture {
 namespace {
@@ -112,8 +113,7 @@ TEST(TuftMotion, AFewReadingsDriftingInAQuietBandAreNotMotion) {
 // sensor): in the band 0.6-1.0 m, where a tuft would stand, 0.47 % of the readings change one frame
 // apart and 0.82 % six apart (1.74x, 0.35 points). A room held still.
 TEST(TuftMotion, TheRealRecordingOfAStillRoomHeldStill) {
-    const std::filesystem::path oni =
-        std::filesystem::path(MEADOW_SHARED_DATA_DIR) / "real/oni-3dj-room/test.oni";
+    const std::filesystem::path oni = meadow::test::realOniRecording();
     if (!std::filesystem::exists(oni)) GTEST_SKIP() << "shared data absent: " << oni;
     auto source = openDepthSource(oni.string());
     std::vector<DepthFrame> frames;

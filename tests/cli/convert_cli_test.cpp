@@ -12,6 +12,7 @@
 #include "cli_test_util.h"
 #include "meadow/capture/depth_source.h"
 #include "meadow/capture/recording.h"
+#include "shared_data.h"
 
 namespace fs = std::filesystem;
 using namespace meadow::capture;
@@ -21,7 +22,7 @@ using meadow::test::runMeadow;
 
 namespace {
 
-const fs::path kRealOni = fs::path(MEADOW_SHARED_DATA_DIR) / "real/oni-3dj-room/test.oni";
+const fs::path kRealOni = meadow::test::realOniRecording();
 
 void writeRecording(const fs::path& folder, int frames) {
     RecordingInfo info;
