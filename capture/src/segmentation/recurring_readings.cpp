@@ -2,7 +2,6 @@
 // read within a few millimetres of one another.
 #include "meadow/capture/recurring_readings.h"
 
-#include <algorithm>
 #include <cmath>
 #include <opencv2/core.hpp>
 #include <vector>
@@ -42,8 +41,7 @@ RecurringReadings recurringReadings(std::span<const DepthFrame> frames,
     RecurringReadings out;
     out.frames = static_cast<int>(frames.size());
     out.neededFrames =
-        std::max(params.minFrames,
-                 static_cast<int>(std::ceil(params.minShare * static_cast<float>(out.frames))));
+        segmentation::framesForShare(params.minShare, frames.size(), params.minFrames);
     if (static_cast<std::size_t>(out.neededFrames) > frames.size()) {
         out.depth_mm = cv::Mat1w(size, std::uint16_t{0});  // too few frames for anything to recur
         return out;

@@ -2,9 +2,14 @@
 #include "segmentation/sorted_readings.h"
 
 #include <algorithm>
+#include <cmath>
 #include <opencv2/core.hpp>
 
 namespace meadow::capture::segmentation {
+
+int framesForShare(float share, std::size_t frames, int atLeast) {
+    return std::max(atLeast, static_cast<int>(std::ceil(share * static_cast<float>(frames))));
+}
 
 std::vector<cv::Mat1w> sortedReadings(std::span<const DepthFrame> frames) {
     const std::size_t n = frames.size();

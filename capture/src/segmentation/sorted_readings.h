@@ -14,6 +14,9 @@ namespace meadow::capture::segmentation {
 // holds but this one, which no sensor reports.
 inline constexpr std::uint16_t kNoReading = 0xffff;
 
+// How many of `frames` frames a share of them is, rounded up, and at least `atLeast`.
+[[nodiscard]] int framesForShare(float share, std::size_t frames, int atLeast);
+
 // sorted[k](y, x) is the (k+1)-th nearest reading of pixel (y, x) over the frames, kNoReading
 // after its last one. Frames must share one size (unchecked). By a sorting network over whole
 // images (Batcher's odd-even merge sort, each comparator an element-wise min and max): a

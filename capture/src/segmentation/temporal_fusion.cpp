@@ -13,8 +13,6 @@
 // the rest to the wall behind, a different half each time), so its median is the wall and the
 // blade is lost. FusionMethod::NearestRecurring keeps, wherever one recurs, the nearest depth read
 // alike in a given share of the frames (README, "Fusing frames by recurring readings").
-#include <algorithm>
-#include <cmath>
 #include <cstdint>
 #include <opencv2/core.hpp>
 #include <vector>
@@ -36,9 +34,8 @@ constexpr int kMinRecurringFusionFrames = 2;
 // read in 5 of 12 frames is there, though the wall behind it holds the median.
 void takeNearestRecurring(const std::vector<cv::Mat1w>& sorted, const SegmenterParams& params,
                           cv::Mat1w& fused, StageReport& report) {
-    const int needed = std::max(kMinRecurringFusionFrames,
-                                static_cast<int>(std::ceil(params.fusionRecurringShare *
-                                                           static_cast<float>(sorted.size()))));
+    const int needed =
+        framesForShare(params.fusionRecurringShare, sorted.size(), kMinRecurringFusionFrames);
     const cv::Mat1w nearest = nearestRecurring(sorted, needed, params.fusionAgreement_mm);
     const cv::Mat1b recurs = nearest > 0;
     const int nearer = cv::countNonZero(recurs & ((fused == 0) | (nearest < fused)));
@@ -55,8 +52,7 @@ cv::Mat1w fuseFrames(std::span<const DepthFrame> frames, const SegmenterParams& 
                      StageReport& report) {
     const cv::Size size = frames[0].depth_mm.size();
     const int n = static_cast<int>(frames.size());
-    const int needed = std::max(
-        1, static_cast<int>(std::ceil(params.minValidFrameFraction * static_cast<float>(n))));
+    const int needed = framesForShare(params.minValidFrameFraction, frames.size(), 1);
     const std::vector<cv::Mat1w> sorted = sortedReadings(frames);
     cv::Mat1w fused(size, 0);
     std::vector<const std::uint16_t*> nth(static_cast<std::size_t>(n));
