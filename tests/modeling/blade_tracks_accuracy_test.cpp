@@ -314,8 +314,7 @@ TEST(BladeTracksAccuracy, PrintsHowFarTheReadingsReachTowardEachTip) {
 // mean shortfall were known and added, what would be left is the spread about it and the error
 // across: what an extension by distance alone would leave; an extension must tell blade from
 // blade to do better. Seeds 1-2, 0.6 / 0.8 / 1.0 m, 4 groups of 3 frames with the readings
-// recurring over all
-// 12. Printed for the README ("Known failures", Tips), not asserted.
+// recurring over all 12. Printed for the README ("Known failures", Tips), not asserted.
 TEST(BladeTracksAccuracy, PrintsTheTipsUnseenLengthAndItsSpread) {
     if (!std::getenv("MEADOW_TIP_REACH")) GTEST_SKIP() << "set MEADOW_TIP_REACH=1";
     BladeFitParams unextended;

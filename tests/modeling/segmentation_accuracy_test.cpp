@@ -49,7 +49,6 @@ constexpr int kSeedsPerPreset = 2;
 // What the sensor left of a true blade that no found blade matched: how much of it was read on
 // its surface, in how many pieces, and whether a depth step parts it from the blades it touches.
 struct MissedBlade {
-    int area_px = 0;
     double readShare = 0;     // share of its pixels read within kOnSurface_mm of its surface
     int readPieces = 0;       // 8-connected pieces those readings form
     int contact_px = 0;       // its pixels that 4-touch another blade's (in the noise-free view)
@@ -64,12 +63,12 @@ MissedBlade describeMissed(const cv::Mat1w& labels, const cv::Mat1f& exact_m,
                            const cv::Mat1w& depth_mm, int id) {
     MissedBlade m;
     const cv::Mat1b mine = labels == id;
-    m.area_px = cv::countNonZero(mine);
+    const int area_px = cv::countNonZero(mine);
     cv::Mat1f reading;
     depth_mm.convertTo(reading, CV_32F, 0.001);
     const cv::Mat1b onSurface =
         mine & (depth_mm > 0) & (cv::abs(reading - exact_m) <= kOnSurface_mm / 1000.f);
-    m.readShare = m.area_px ? double(cv::countNonZero(onSurface)) / m.area_px : 0.0;
+    m.readShare = area_px ? double(cv::countNonZero(onSurface)) / area_px : 0.0;
     cv::Mat1i pieces;
     m.readPieces = cv::connectedComponents(onSurface, pieces, 8) - 1;
     std::vector<float> steps;
