@@ -243,6 +243,12 @@ TEST(BladeTracksAccuracy, PrintsTwelveFramesFusedByRecurringReadingsAgainstFourG
     }
 }
 
+double meanOf(const std::vector<double>& v) {
+    double sum = 0.0;
+    for (const double x : v) sum += x;
+    return v.empty() ? 0.0 : sum / static_cast<double>(v.size());
+}
+
 // How far toward each true tip the sensor's readings reach over the 12 frames of a still tuft:
 // walking the true spine back from its tip, the first point with a reading within 10 mm of its
 // depth in a pixel of its 3 x 3 neighbourhood, in at least 1 and in at least 5 of the 12
@@ -295,17 +301,13 @@ TEST(BladeTracksAccuracy, PrintsHowFarTheReadingsReachTowardEachTip) {
                     unseenRecurring.push_back(1e3 * std::max(reachRecurring, 0.f));
                 }
             }
-        const auto mean = [](const std::vector<double>& v) {
-            double sum = 0;
-            for (double x : v) sum += x;
-            return v.empty() ? 0.0 : sum / static_cast<double>(v.size());
-        };
         const auto max = [](const std::vector<double>& v) {
             return v.empty() ? 0.0 : *std::max_element(v.begin(), v.end());
         };
         std::cout << std::fixed << std::setprecision(2) << "| " << preset << " | "
-                  << unseenAll.size() << " | " << mean(unseenAll) << ", " << max(unseenAll) << " | "
-                  << mean(unseenRecurring) << ", " << max(unseenRecurring) << " |" << std::endl;
+                  << unseenAll.size() << " | " << meanOf(unseenAll) << ", " << max(unseenAll)
+                  << " | " << meanOf(unseenRecurring) << ", " << max(unseenRecurring) << " |"
+                  << std::endl;
     }
 }
 
@@ -346,8 +348,7 @@ TEST(BladeTracksAccuracy, PrintsTheTipsUnseenLengthAndItsSpread) {
                                                miss - glm::dot(miss, tangent) * tangent);
                 }
             }
-            double mean = 0.0;
-            for (const double a : along) mean += a / static_cast<double>(along.size());
+            const double mean = meanOf(along);
             for (const double a : along) spreadSq += (a - mean) * (a - mean);
             means.push_back(mean);
             tips += static_cast<int>(along.size());

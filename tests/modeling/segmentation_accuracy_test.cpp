@@ -46,14 +46,21 @@ const std::vector<std::string> kBladeTypePresets{"slim-grass", "quadratic-leaf",
                                                  "bamboo-leaf", "sharp-tip"};
 constexpr int kSeedsPerPreset = 2;
 
+// The upper middle value (0 for none).
+double median(std::vector<double> v) {
+    if (v.empty()) return 0.0;
+    std::nth_element(v.begin(), v.begin() + static_cast<long>(v.size() / 2), v.end());
+    return v[v.size() / 2];
+}
+
 // What the sensor left of a true blade that no found blade matched: how much of it was read on
 // its surface, in how many pieces, and whether a depth step parts it from the blades it touches.
 struct MissedBlade {
-    double readShare = 0;     // share of its pixels read within kOnSurface_mm of its surface
-    int readPieces = 0;       // 8-connected pieces those readings form
-    int contact_px = 0;       // its pixels that 4-touch another blade's (in the noise-free view)
-    double steppedShare = 0;  // share of those where the depth steps by >= kDepthStep_mm
-    float medianStep_mm = 0;  // median step over the contact
+    double readShare = 0;      // share of its pixels read within kOnSurface_mm of its surface
+    int readPieces = 0;        // 8-connected pieces those readings form
+    int contact_px = 0;        // its pixels that 4-touch another blade's (in the noise-free view)
+    double steppedShare = 0;   // share of those where the depth steps by >= kDepthStep_mm
+    double medianStep_mm = 0;  // median step over the contact
 };
 constexpr float kOnSurface_mm = 10.f;
 // 3.6 sigma of the axial noise at 0.7 m (1.37 mm); the quantisation step there is 1.4 mm.
@@ -71,7 +78,7 @@ MissedBlade describeMissed(const cv::Mat1w& labels, const cv::Mat1f& exact_m,
     m.readShare = area_px ? double(cv::countNonZero(onSurface)) / area_px : 0.0;
     cv::Mat1i pieces;
     m.readPieces = cv::connectedComponents(onSurface, pieces, 8) - 1;
-    std::vector<float> steps;
+    std::vector<double> steps;
     for (int y = 1; y + 1 < labels.rows; ++y)
         for (int x = 1; x + 1 < labels.cols; ++x) {
             if (labels(y, x) != id) continue;
@@ -80,16 +87,14 @@ MissedBlade describeMissed(const cv::Mat1w& labels, const cv::Mat1f& exact_m,
                                       cv::Point(x, y - 1)})
                 if (labels(q) != 0 && labels(q) != id)
                     step = std::max(step, 1000.f * std::abs(exact_m(q) - exact_m(y, x)));
-            if (step >= 0.f) steps.push_back(step);
+            if (step >= 0.f) steps.push_back(static_cast<double>(step));
         }
     m.contact_px = static_cast<int>(steps.size());
     if (!steps.empty()) {
         m.steppedShare = double(std::count_if(steps.begin(), steps.end(),
-                                              [](float d) { return d >= kDepthStep_mm; })) /
+                                              [](double d) { return d >= kDepthStep_mm; })) /
                          static_cast<double>(steps.size());
-        std::nth_element(steps.begin(), steps.begin() + static_cast<long>(steps.size() / 2),
-                         steps.end());
-        m.medianStep_mm = steps[steps.size() / 2];
+        m.medianStep_mm = median(steps);
     }
     return m;
 }
@@ -112,11 +117,6 @@ struct Score {
     }
     [[nodiscard]] double recall() const { return truth ? double(matched) / truth : 1.0; }
     [[nodiscard]] double precision() const { return found ? double(matched) / found : 1.0; }
-    static double median(std::vector<double> v) {
-        if (v.empty()) return 0.0;
-        std::nth_element(v.begin(), v.begin() + static_cast<long>(v.size() / 2), v.end());
-        return v[v.size() / 2];
-    }
     [[nodiscard]] double medianIou() const { return median(iou); }
     [[nodiscard]] double oracleRecall() const {
         const auto n = std::count_if(oracleIou.begin(), oracleIou.end(),
@@ -340,7 +340,7 @@ TEST(SegmentationAccuracy, LeafPresetsAtNominalNoiseKeepTodaysAccuracy) {
                   << total.precision() << " median IoU " << total.medianIou();
         if (!total.oracleIou.empty())
             std::cout << ", with a perfect partition recall " << total.oracleRecall()
-                      << " median IoU " << Score::median(total.oracleIou);
+                      << " median IoU " << median(total.oracleIou);
         std::cout << '\n';
     }
 }
@@ -538,7 +538,7 @@ TEST(SegmentationAccuracy, PrintsFusionTable) {
                           << total.medianIou();
                 if (!total.oracleIou.empty())
                     std::cout << " (perfect partition " << total.oracleRecall() << " / "
-                              << Score::median(total.oracleIou) << ")";
+                              << median(total.oracleIou) << ")";
                 std::cout << " |";
             }
             std::cout << std::endl;
@@ -582,8 +582,8 @@ TEST(SegmentationAccuracy, PrintsWhatTheSensorLeftOfMissedBlades) {
         }
         std::cout << std::fixed << std::setprecision(2) << "| " << preset << " | "
                   << total.missed.size() << " / " << total.truth << " | " << underHalf << " | "
-                  << noStep << " | " << neither << " | " << Score::median(share) << " | "
-                  << Score::median(pieces) << " | " << Score::median(step) << " |" << std::endl;
+                  << noStep << " | " << neither << " | " << median(share) << " | " << median(pieces)
+                  << " | " << median(step) << " |" << std::endl;
     }
 }
 
