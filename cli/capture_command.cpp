@@ -26,7 +26,7 @@ struct CaptureArgs {
     SourceArgs sourceArgs;
     modeling::CaptureOptions options;
     float tolerance_mm = 0.f;
-    std::string plane = "ransac";
+    std::string plane;
     std::string fusion = capture::toString(capture::FusionMethod::Median);
     bool verbose = false;
 };
@@ -50,29 +50,6 @@ const CLI::Validator kRefinedKnotCount(
     },
     "in {0, 2-128}");
 
-capture::PlaneMethod planeMethod(const std::string& name) {
-    if (name == "none") return capture::PlaneMethod::None;
-    if (name == "organized") return capture::PlaneMethod::OrganizedMultiPlane;
-    return capture::PlaneMethod::Ransac;
-}
-
-// --fusion takes the segmenter's own names for its fusion methods (capture::toString).
-const std::vector<capture::FusionMethod> kFusionMethods{capture::FusionMethod::Median,
-                                                        capture::FusionMethod::NearestRecurring};
-
-std::vector<std::string> fusionNames() {
-    std::vector<std::string> names;
-    for (const auto m : kFusionMethods) names.push_back(capture::toString(m));
-    return names;
-}
-
-// The method named (the option's check has already refused any other name).
-capture::FusionMethod fusionMethod(const std::string& name) {
-    for (const auto m : kFusionMethods)
-        if (capture::toString(m) == name) return m;
-    return capture::FusionMethod::Median;
-}
-
 // A user band needs both edges, near below far (the segmenter's own check names its fields).
 void checkBand(float near_m, float far_m) {
     if ((near_m > 0.f || far_m > 0.f) && !(near_m < far_m)) {
@@ -87,8 +64,9 @@ void runCapture(CaptureArgs& args) {
     checkBand(args.options.segmenter.nearDepth_m, args.options.segmenter.farDepth_m);
     modeling::CaptureOptions options = args.options;
     options.debugDir = args.debug;
-    options.segmenter.planeMethod = planeMethod(args.plane);
-    options.segmenter.fusion = fusionMethod(args.fusion);
+    // The options' checks have already refused any other name.
+    options.segmenter.planeMethod = *capture::kPlaneMethodNames.parse(args.plane);
+    options.segmenter.fusion = *capture::kFusionMethodNames.parse(args.fusion);
     options.fit.setTolerance_m(args.tolerance_mm * 1e-3f);
 
     auto source = capture::openDepthSource(args.source, toSourceOptions(args.sourceArgs));
@@ -175,7 +153,7 @@ void addCaptureCommand(CLI::App& app) {
                     "(1.4-4.2 against 1.4-4.4 mm), though the masks are better (README, \"Fusing "
                     "frames by recurring readings\")")
         ->capture_default_str()
-        ->check(CLI::IsMember(fusionNames()));
+        ->check(CLI::IsMember(capture::kFusionMethodNames.names()));
     cmd->add_option("--max-frames", args->options.maxFrames,
                     "Stop after this many frames (0 = all)")
         ->capture_default_str()
@@ -206,10 +184,10 @@ void addCaptureCommand(CLI::App& app) {
         ->capture_default_str()
         ->check(CLI::Range(0.f, 20.f));
     cmd->add_option("--plane", args->plane,
-                    "Ground/background plane removal: ransac (PCL SACSegmentation), organized (PCL "
-                    "OrganizedMultiPlaneSegmentation) or none")
-        ->default_val("ransac")
-        ->check(CLI::IsMember({"ransac", "organized", "none"}));
+                    "Ground/background plane removal: ransac (PCL SACSegmentation), "
+                    "organized-multi-plane (PCL OrganizedMultiPlaneSegmentation) or none")
+        ->default_val(capture::toString(capture::SegmenterParams{}.planeMethod))
+        ->check(CLI::IsMember(capture::kPlaneMethodNames.names()));
     cmd->add_option("--edge-smoothing", args->options.segmenter.edgeSmoothingSigma_px,
                     "Sigma, in contour points, of the Gaussian that smooths the mask's ragged edge "
                     "along its contour (0 = off; no point moves more than 1 px, tips and valleys "

@@ -3,8 +3,8 @@
 #include <iostream>
 
 #include "commands.h"
-#include "meadow/capture/error.h"
 #include "meadow/capture/frame_memory.h"
+#include "meadow/core/error.h"
 
 int main(int argc, char** argv) {
     meadow::capture::keepFrameBuffersResident();  // capture and render run frame after frame

@@ -8,7 +8,7 @@
 #include <string>
 
 #include "commands.h"
-#include "meadow/capture/atomic_file.h"
+#include "meadow/core/atomic_file.h"
 #include "meadow/modeling/archetype_library.h"
 #include "meadow/runtime/culling.h"
 #include "meadow/runtime/error.h"

@@ -1,6 +1,5 @@
 #include "source_options.h"
 
-#include "meadow/capture/error.h"
 #include "meadow/capture/recording.h"
 
 namespace meadow::cli {

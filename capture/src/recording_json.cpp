@@ -4,15 +4,14 @@
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
-#include <fstream>
 #include <iterator>
 #include <limits>
 #include <nlohmann/json.hpp>
-#include <sstream>
 #include <system_error>
 
 #include "meadow/capture/error.h"
 #include "meadow/capture/recording.h"
+#include "meadow/core/json_reader.h"
 
 namespace meadow::capture {
 
@@ -28,95 +27,12 @@ constexpr int kFrameNameDigits = 6;
 
 const char* kRecordHint = "fix the file or record again";
 
-// A float as JSON: the shortest decimal that reads back as the same float (575.8, not
-// 575.7999877929688), so recording.json stays readable and round trips bit for bit.
-double shortestDouble(float value) {
-    char text[32];
-    const auto [end, ec] = std::to_chars(std::begin(text), std::end(text), value);
-    if (ec != std::errc{}) return value;
-    double result = value;
-    std::from_chars(text, end, result);
-    return result;
-}
-
-// Each accessor throws CaptureError naming the file, the field and what it expected.
-class FieldReader {
-public:
-    FieldReader(const ordered_json& object, const fs::path& file) : j_(object), file_(file) {}
-
-    [[noreturn]] void fail(const std::string& field, const std::string& problem) const {
-        throw CaptureError(file_.string() + ": \"" + field + "\" " + problem + "; " + kRecordHint);
-    }
-
-    const ordered_json& require(const std::string& field) const {
-        const auto it = j_.find(field);
-        if (it == j_.end()) fail(field, "is missing");
-        return *it;
-    }
-
-    std::string string(const std::string& field) const {
-        const ordered_json& v = require(field);
-        if (!v.is_string()) fail(field, "must be a string, got " + v.dump());
-        return v.get<std::string>();
-    }
-
-    std::int64_t integer(const std::string& field) const {
-        const ordered_json& v = require(field);
-        if (v.is_number_unsigned() &&
-            v.get<std::uint64_t>() >
-                static_cast<std::uint64_t>(std::numeric_limits<std::int64_t>::max()))
-            fail(field, "is too large, got " + v.dump());
-        if (!v.is_number_integer()) fail(field, "must be an integer, got " + v.dump());
-        return v.get<std::int64_t>();
-    }
-
-    int positiveInt(const std::string& field) const {
-        const std::int64_t value = integer(field);
-        if (value <= 0) fail(field, "must be positive, got " + std::to_string(value));
-        if (value > std::numeric_limits<int>::max())
-            fail(field, "is too large, got " + std::to_string(value));
-        return static_cast<int>(value);
-    }
-
-    double number(const std::string& field) const {
-        const ordered_json& v = require(field);
-        if (!v.is_number()) fail(field, "must be a number, got " + v.dump());
-        return v.get<double>();
-    }
-
-    // Out-of-range values become infinity so that Intrinsics::problem() reports them.
-    float floatNumber(const std::string& field) const {
-        const double value = number(field);
-        if (std::isfinite(value) && std::abs(value) <= std::numeric_limits<float>::max())
-            return static_cast<float>(value);
-        return std::isnan(value) ? std::numeric_limits<float>::quiet_NaN()
-                                 : std::copysign(std::numeric_limits<float>::infinity(), value);
-    }
-
-private:
-    const ordered_json& j_;
-    const fs::path& file_;
-};
-
-ordered_json parseObject(const std::string& text, const fs::path& file) {
-    ordered_json j;
-    try {
-        j = ordered_json::parse(text);
-    } catch (const ordered_json::exception& e) {  // parse_error, or out_of_range for 1e400
-        throw CaptureError(file.string() + " is not valid JSON (" + e.what() + "); " + kRecordHint);
-    }
-    if (!j.is_object())
-        throw CaptureError(file.string() + " must hold a JSON object, got " +
-                           std::string(j.type_name()) + "; " + kRecordHint);
-    return j;
-}
-
-std::string slurp(const fs::path& file) {
-    std::ifstream in(file, std::ios::binary);
-    if (!in) throw CaptureError("cannot read " + file.string() + ": check that it is readable");
-    std::ostringstream text;
-    text << in.rdbuf();
-    return text.str();
+// A float field kept as read: a value beyond a float becomes infinity so that
+// Intrinsics::problem() reports it with the others.
+float floatOrInfinity(const JsonReader& reader, std::string_view key) {
+    const double value = reader.number(key);
+    if (std::abs(value) <= std::numeric_limits<float>::max()) return static_cast<float>(value);
+    return std::copysign(std::numeric_limits<float>::infinity(), value);
 }
 
 }  // namespace
@@ -145,51 +61,54 @@ std::string recordingInfoToJson(const RecordingInfo& info) {
 }
 
 RecordingInfo recordingInfoFromJson(const std::string& text, const fs::path& file) {
-    const ordered_json j = parseObject(text, file);
-    const FieldReader field(j, file);
-
-    const ordered_json& format = field.require("format");
-    if (!format.is_string() || format.get<std::string>() != kRecordingFormatName)
-        throw CaptureError(file.string() + ": format is " + format.dump() + ", expected \"" +
-                           std::string(kRecordingFormatName) +
-                           "\": this is not a meadow recording; give a recording folder, or a "
-                           "plain PNG folder with --intrinsics and --depth-unit");
-    const std::int64_t version = field.integer("version");
-    if (version != kRecordingFormatVersion)
-        throw CaptureError(file.string() + ": version " + std::to_string(version) +
-                           " is not supported (this meadow reads version " +
-                           std::to_string(kRecordingFormatVersion) +
-                           "); use the meadow that wrote it or record again");
-
-    RecordingInfo info;
-    info.sensor = field.string("sensor");
-    info.intrinsics.width_px = field.positiveInt("width_px");
-    info.intrinsics.height_px = field.positiveInt("height_px");
-    info.intrinsics.fx_px = field.floatNumber("fx_px");
-    info.intrinsics.fy_px = field.floatNumber("fy_px");
-    info.intrinsics.cx_px = field.floatNumber("cx_px");
-    info.intrinsics.cy_px = field.floatNumber("cy_px");
-    if (const std::string problem = info.intrinsics.problem(); !problem.empty())
-        throw CaptureError(file.string() + ": intrinsics unusable: " + problem + "; " +
-                           kRecordHint);
-    const std::string unit = field.string("depth_unit");
-    const std::optional<DepthUnit> depthUnit = parseDepthUnit(unit);
-    if (!depthUnit)
-        field.fail("depth_unit", "must be \"mm\", \"0.2mm\" or \"m\", got \"" + unit + "\"");
-    info.depthUnit = *depthUnit;
-    info.frameCount = field.positiveInt("frame_count");
-    info.frameRate_hz = field.number("frame_rate_hz");
-    if (!std::isfinite(info.frameRate_hz) || info.frameRate_hz <= 0.0)
-        field.fail("frame_rate_hz", "must be a positive number of frames per second, got " +
-                                        std::to_string(info.frameRate_hz));
-    return info;
+    try {
+        const nlohmann::json j = parseJsonObject(text);
+        checkJsonFormat(j, {kRecordingFormatName, kRecordingFormatVersion});
+        const JsonReader field(j);
+        RecordingInfo info;
+        info.sensor = field.string("sensor");
+        info.intrinsics.width_px = field.integer("width_px", 1, std::numeric_limits<int>::max());
+        info.intrinsics.height_px = field.integer("height_px", 1, std::numeric_limits<int>::max());
+        info.intrinsics.fx_px = floatOrInfinity(field, "fx_px");
+        info.intrinsics.fy_px = floatOrInfinity(field, "fy_px");
+        info.intrinsics.cx_px = floatOrInfinity(field, "cx_px");
+        info.intrinsics.cy_px = floatOrInfinity(field, "cy_px");
+        if (const std::string problem = info.intrinsics.problem(); !problem.empty())
+            throw CaptureError(file.string() + ": intrinsics unusable: " + problem + "; " +
+                               kRecordHint);
+        const std::string unit = field.string("depth_unit");
+        const std::optional<DepthUnit> depthUnit = parseDepthUnit(unit);
+        if (!depthUnit)
+            field.fail("depth_unit",
+                       "must be " + kDepthUnitNames.list(", ") + ", got \"" + unit + "\"");
+        info.depthUnit = *depthUnit;
+        info.frameCount = field.integer("frame_count", 1, std::numeric_limits<int>::max());
+        info.frameRate_hz = field.number("frame_rate_hz");
+        if (info.frameRate_hz <= 0.0)
+            field.fail("frame_rate_hz", "must be a positive number of frames per second, got " +
+                                            std::to_string(info.frameRate_hz));
+        return info;
+    } catch (const JsonError& e) {
+        switch (e.kind()) {
+            case JsonError::Kind::WrongFormat:
+                throw CaptureError(file.string() + ": " + e.what() +
+                                   ": this is not a meadow recording; give a recording folder, "
+                                   "or a plain PNG folder with --intrinsics and --depth-unit");
+            case JsonError::Kind::WrongVersion:
+                throw CaptureError(file.string() + ": " + e.what() +
+                                   "; use the meadow that wrote it or record again");
+            default:
+                throw CaptureError(file.string() + ": " + e.what() + "; " + kRecordHint);
+        }
+    }
 }
 
 bool isRecordingJson(const fs::path& file) {
     try {
-        const ordered_json j = ordered_json::parse(slurp(file));
-        return j.is_object() && j.contains("format") && j["format"].is_string() &&
-               j["format"].get<std::string>() == kRecordingFormatName;
+        const nlohmann::json j = parseJsonObject(readTextFile(file));
+        const auto format = j.find("format");
+        return format != j.end() && format->is_string() &&
+               format->get<std::string>() == kRecordingFormatName;
     } catch (const std::exception&) {
         return false;
     }
@@ -211,7 +130,13 @@ RecordingInfo readRecordingInfo(const fs::path& folder) {
                            " is missing: this is not a finished meadow recording; for a plain "
                            "folder of 16-bit PNGs pass --intrinsics fx,fy,cx,cy and "
                            "--depth-unit mm|0.2mm|m");
-    return detail::recordingInfoFromJson(detail::slurp(file), file);
+    std::string text;
+    try {
+        text = readTextFile(file);
+    } catch (const Error& e) {
+        throw CaptureError(e.what());
+    }
+    return detail::recordingInfoFromJson(text, file);
 }
 
 }  // namespace meadow::capture

@@ -4,9 +4,9 @@
 #include <system_error>
 
 #include "depth_png.h"
-#include "meadow/capture/atomic_file.h"
 #include "meadow/capture/error.h"
 #include "meadow/capture/recording.h"
+#include "meadow/core/atomic_file.h"
 #include "recording_json.h"
 
 namespace meadow::capture {

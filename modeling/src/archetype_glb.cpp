@@ -8,7 +8,7 @@
 #include <sstream>
 
 #include "archetype_json.h"
-#include "meadow/capture/atomic_file.h"
+#include "meadow/core/atomic_file.h"
 #include "meadow/modeling/blade_mesh.h"
 #include "meadow/modeling/error.h"
 

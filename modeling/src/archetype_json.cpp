@@ -1,6 +1,9 @@
 #include "archetype_json.h"
 
-#include <array>
+#include <limits>
+#include <optional>
+
+#include "meadow/core/json_reader.h"
 
 namespace meadow::modeling::detail {
 
@@ -8,35 +11,12 @@ using nlohmann::json;
 
 namespace {
 
-constexpr std::array<std::pair<AnalyticShape, const char*>, 4> kShapeNames{{
-    {AnalyticShape::Quad, "quad"},
-    {AnalyticShape::Triangle, "triangle"},
-    {AnalyticShape::Quadratic, "quadratic"},
-    {AnalyticShape::TriangleTip, "triangle-tip"},
-}};
+// Frame numbers, blade ids and point counts are ints.
+constexpr int kMaxCount = std::numeric_limits<int>::max();
 
 json vec3ToJson(const glm::vec3& v) { return json::array({v.x, v.y, v.z}); }
 
-AnalyticShape shapeFromString(const std::string& text, const std::string& path) {
-    for (const auto& [shape, name] : kShapeNames)
-        if (text == name) return shape;
-    throw JsonFieldError(path,
-                         "unknown shape '" + text + "' (quad, triangle, quadratic, triangle-tip)");
-}
-
 }  // namespace
-
-}  // namespace meadow::modeling::detail
-
-namespace meadow::modeling {
-
-std::string toString(AnalyticShape shape) {
-    for (const auto& [s, name] : detail::kShapeNames)
-        if (s == shape) return name;
-    return "quadratic";
-}
-
-namespace detail {
 
 json archetypeToJson(const Archetype& a) {
     json j;
@@ -76,82 +56,77 @@ Archetype archetypeFromJson(const json& value, const std::string& path) {
     const JsonReader r(value, path);
     Archetype a;
     a.name = r.string("name");
-    const JsonReader spine(r.object("spine_m"), r.pathOf("spine_m"));
+    const JsonReader spine = r.object("spine_m");
     a.spine_m = {spine.vec3("v0"), spine.vec3("v1"), spine.vec3("v2")};
-    if (a.height_m() <= 0.f) throw JsonFieldError(r.pathOf("spine_m"), "has zero length");
-    const json& widths = r.array("width_m");
-    if (widths.size() < 2) throw JsonFieldError(r.pathOf("width_m"), "needs at least 2 samples");
-    for (std::size_t i = 0; i < widths.size(); ++i) {
-        const std::string p = r.pathOf("width_m") + "[" + std::to_string(i) + "]";
-        const float w = finiteNumber(widths[i], p);
-        if (w < 0.f) throw JsonFieldError(p, "is negative");
-        a.width.width_m.push_back(w);
-    }
-    if (a.width.maxWidth_m() <= 0.f)
-        throw JsonFieldError(r.pathOf("width_m"), "is zero everywhere");
-    a.nearestShape =
-        shapeFromString(r.string("nearest_shape", "quadratic"), r.pathOf("nearest_shape"));
-    a.tau = r.number("tau", 0.5f);
-    if (a.tau < 0.f || a.tau > 1.f) throw JsonFieldError(r.pathOf("tau"), "must lie in [0, 1]");
+    if (a.height_m() <= 0.f) r.fail("spine_m", "has zero length");
+    a.width.width_m = r.floatArray("width_m");
+    if (a.width.width_m.size() < 2) r.fail("width_m", "needs at least 2 samples");
+    for (std::size_t i = 0; i < a.width.width_m.size(); ++i)
+        if (a.width.width_m[i] < 0.f)
+            throw JsonError(JsonError::Kind::Field, elementPath(r.pathOf("width_m"), i),
+                            "is negative");
+    if (a.width.maxWidth_m() <= 0.f) r.fail("width_m", "is zero everywhere");
+    const std::string shape = r.string("nearest_shape", "quadratic");
+    const std::optional<AnalyticShape> nearest = kAnalyticShapeNames.parse(shape);
+    if (!nearest)
+        r.fail("nearest_shape",
+               "unknown shape '" + shape + "' (" + kAnalyticShapeNames.list() + ")");
+    a.nearestShape = *nearest;
+    a.tau = r.floatNumber("tau", 0.5f, 0.f, 1.f);
     // Fit report, source and knots are optional: an authored archetype has none.
     if (r.has("fit")) {
-        const JsonReader fit(r.object("fit"), r.pathOf("fit"));
-        a.fit.spineRms_mm = fit.number("spine_rms_mm", 0.f);
-        a.fit.spineMax_mm = fit.number("spine_max_mm", 0.f);
-        a.fit.widthMae_mm = fit.number("width_mae_mm", 0.f);
-        a.fit.widthMax_mm = fit.number("width_max_mm", 0.f);
-        a.fit.shapeError_mm = fit.number("shape_error_mm", 0.f);
-        a.fit.widthCheckMae_mm = fit.number("width_check_mae_mm", 0.f);
-        a.fit.sideLengthRatio = fit.number("side_length_ratio", 1.f);
-        const auto flag = [&](const char* name) {
-            if (!fit.has(name)) return false;
-            const json& value = r.object("fit")[name];
-            if (!value.is_boolean())
-                throw JsonFieldError(fit.pathOf(name), "must be true or false");
-            return value.get<bool>();
-        };
+        const JsonReader fit = r.object("fit");
+        a.fit.spineRms_mm = fit.floatNumber("spine_rms_mm", 0.f);
+        a.fit.spineMax_mm = fit.floatNumber("spine_max_mm", 0.f);
+        a.fit.widthMae_mm = fit.floatNumber("width_mae_mm", 0.f);
+        a.fit.widthMax_mm = fit.floatNumber("width_max_mm", 0.f);
+        a.fit.shapeError_mm = fit.floatNumber("shape_error_mm", 0.f);
+        a.fit.widthCheckMae_mm = fit.floatNumber("width_check_mae_mm", 0.f);
+        a.fit.sideLengthRatio = fit.floatNumber("side_length_ratio", 1.f);
         const auto length_mm = [&](const char* name) {
-            const float v = fit.number(name, 0.f);
-            if (v < 0.f) throw JsonFieldError(fit.pathOf(name), "must not be negative");
+            const float v = fit.floatNumber(name, 0.f);
+            if (v < 0.f) fit.fail(name, "must not be negative");
             return v;
         };
-        a.fit.asymmetric = flag("asymmetric");
-        a.fit.skeletonPoints = fit.has("skeleton_points") ? fit.integer("skeleton_points") : 0;
+        a.fit.asymmetric = fit.boolean("asymmetric", false);
+        a.fit.skeletonPoints = fit.integer("skeleton_points", 0, 0, kMaxCount);
         // Rooting and tip extension (blade_root.h, blade_tip.h); absent in older libraries.
         a.fit.baseExtension_mm = length_mm("base_extension_mm");
-        a.fit.baseNotRooted = flag("base_not_rooted");
+        a.fit.baseNotRooted = fit.boolean("base_not_rooted", false);
         a.fit.tipExtension_mm = length_mm("tip_extension_mm");
     }
     if (r.has("source")) {
-        const JsonReader src(r.object("source"), r.pathOf("source"));
+        const JsonReader src = r.object("source");
         a.source.recording = src.string("recording", "");
-        a.source.frame = src.has("frame") ? src.integer("frame") : -1;
-        a.source.bladeId = src.has("blade_id") ? src.integer("blade_id") : 0;
+        a.source.frame = src.integer("frame", -1, -1, kMaxCount);
+        a.source.bladeId = src.integer("blade_id", 0, 0, kMaxCount);
         if (src.has("flags"))  // absent in older libraries
             for (const json& line : src.array("flags")) {
-                if (!line.is_string())
-                    throw JsonFieldError(src.pathOf("flags"), "must hold reason lines (strings)");
+                if (!line.is_string()) src.fail("flags", "must hold reason lines (strings)");
                 a.source.flags.push_back(line.get<std::string>());
             }
         if (src.has("seen_in")) {  // absent in older libraries
             const json& seen = src.array("seen_in");
             for (std::size_t i = 0; i < seen.size(); ++i) {
-                const std::string path = src.pathOf("seen_in") + "[" + std::to_string(i) + "]";
+                const std::string at = elementPath(src.pathOf("seen_in"), i);
                 if (!seen[i].is_object())
-                    throw JsonFieldError(path, "must be an object with frame and blade_id");
-                const JsonReader entry(seen[i], path);
-                a.source.seenIn.push_back({entry.integer("frame"), entry.integer("blade_id")});
+                    throw JsonError(JsonError::Kind::Field, at,
+                                    "must be an object with frame and blade_id");
+                const JsonReader entry(seen[i], at);
+                a.source.seenIn.push_back({entry.integer("frame", 0, kMaxCount),
+                                           entry.integer("blade_id", 0, kMaxCount)});
             }
         }
     }
     if (r.has("knots_m")) {
         const json& knots = r.array("knots_m");
         for (std::size_t i = 0; i < knots.size(); ++i) {
-            const std::string p = r.pathOf("knots_m") + "[" + std::to_string(i) + "]";
+            const std::string at = elementPath(r.pathOf("knots_m"), i);
             if (!knots[i].is_array() || knots[i].size() != 3)
-                throw JsonFieldError(p, "must be an array of 3 numbers");
-            a.knots_m.push_back({finiteNumber(knots[i][0], p), finiteNumber(knots[i][1], p),
-                                 finiteNumber(knots[i][2], p)});
+                throw JsonError(JsonError::Kind::Field, at, "must be an array of 3 numbers");
+            a.knots_m.push_back({finiteFloat(knots[i][0], elementPath(at, 0)),
+                                 finiteFloat(knots[i][1], elementPath(at, 1)),
+                                 finiteFloat(knots[i][2], elementPath(at, 2))});
         }
     }
     return a;
@@ -166,12 +141,11 @@ ArchetypeMerge mergeFromJson(const json& value, const std::string& path) {
     ArchetypeMerge m;
     m.kept = r.string("kept");
     for (const json& name : r.array("merged")) {
-        if (!name.is_string()) throw JsonFieldError(r.pathOf("merged"), "must hold names");
+        if (!name.is_string()) r.fail("merged", "must hold names");
         m.merged.push_back(name.get<std::string>());
     }
-    m.shapeDistance_m = r.number("shape_distance_m", 0.f);
+    m.shapeDistance_m = r.floatNumber("shape_distance_m", 0.f);
     return m;
 }
 
-}  // namespace detail
-}  // namespace meadow::modeling
+}  // namespace meadow::modeling::detail

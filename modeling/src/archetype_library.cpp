@@ -1,12 +1,10 @@
 #include "meadow/modeling/archetype_library.h"
 
-#include <cmath>
-#include <fstream>
 #include <nlohmann/json.hpp>
-#include <sstream>
 
 #include "archetype_json.h"
-#include "meadow/capture/atomic_file.h"
+#include "meadow/core/atomic_file.h"
+#include "meadow/core/json_reader.h"
 #include "meadow/modeling/error.h"
 
 namespace meadow::modeling {
@@ -14,50 +12,38 @@ namespace meadow::modeling {
 using nlohmann::json;
 
 ArchetypeLibrary parseArchetypeLibrary(const std::string& jsonText, const std::string& origin) {
-    const auto fail = [&](const std::string& what) -> ModelingError {
-        return ModelingError("archetype library " + origin + ": " + what);
-    };
-    json doc;
-    try {
-        doc = json::parse(jsonText);
-    } catch (const json::exception& e) {
-        // parse_error for broken syntax (NaN and Inf literals too), out_of_range for numbers
-        // that overflow a double (1e999).
-        throw fail(std::string("not valid JSON (") + e.what() +
-                   "); NaN and Inf are not JSON, re-export the library");
-    }
-    if (!doc.is_object()) throw fail("the top level must be a JSON object");
-    const auto format = doc.value("format", std::string{});
-    if (format != kArchetypeLibraryFormat)
-        throw fail("format is '" + format + "', expected '" + kArchetypeLibraryFormat + "'");
-    if (!doc.contains("version") || !doc["version"].is_number_integer())
-        throw fail("missing integer 'version'");
-    const int version = doc["version"].get<int>();
-    if (version != kArchetypeLibraryVersion)
-        throw fail("format version " + std::to_string(version) +
-                   " is not supported (this meadow reads version " +
-                   std::to_string(kArchetypeLibraryVersion) +
-                   "); use a matching meadow or re-capture");
-
+    const std::string where = "archetype library " + origin + ": ";
     ArchetypeLibrary lib;
     try {
-        detail::JsonReader reader(doc);
+        const json doc = parseJsonObject(jsonText);
+        checkJsonFormat(doc, {kArchetypeLibraryFormat, kArchetypeLibraryVersion});
+        const JsonReader reader(doc);
         lib.generator = reader.string("generator", "unknown");
         lib.source = reader.string("source", "");
         const json& list = reader.array("archetypes");
-        if (list.empty())
-            throw detail::JsonFieldError("archetypes", "the library has no archetypes");
+        if (list.empty()) reader.fail("archetypes", "the library has no archetypes");
         for (std::size_t i = 0; i < list.size(); ++i)
             lib.archetypes.push_back(
-                detail::archetypeFromJson(list[i], "archetypes[" + std::to_string(i) + "]"));
-        if (doc.contains("merges")) {
+                detail::archetypeFromJson(list[i], elementPath("archetypes", i)));
+        if (reader.has("merges")) {
             const json& merges = reader.array("merges");
             for (std::size_t i = 0; i < merges.size(); ++i)
-                lib.merges.push_back(
-                    detail::mergeFromJson(merges[i], "merges[" + std::to_string(i) + "]"));
+                lib.merges.push_back(detail::mergeFromJson(merges[i], elementPath("merges", i)));
         }
-    } catch (const detail::JsonFieldError& e) {
-        throw fail(e.what());
+    } catch (const JsonError& e) {
+        switch (e.kind()) {
+            case JsonError::Kind::Syntax:
+                throw ModelingError(where + e.what() +
+                                    "; NaN and Inf are not JSON, re-export the library");
+            case JsonError::Kind::WrongFormat:
+                throw ModelingError(where + e.what() + ": this is not an archetype library");
+            case JsonError::Kind::WrongVersion:
+                throw ModelingError(where + e.what() + "; use a matching meadow or re-capture");
+            case JsonError::Kind::NotAnObject:
+            case JsonError::Kind::Field:
+                break;
+        }
+        throw ModelingError(where + e.what());
     }
     return lib;
 }
@@ -80,13 +66,14 @@ std::string serialiseArchetypeLibrary(const ArchetypeLibrary& lib) {
 }
 
 ArchetypeLibrary loadArchetypeLibrary(const std::filesystem::path& path) {
-    std::ifstream in(path, std::ios::binary);
-    if (!in)
-        throw ModelingError("cannot open archetype library " + path.string() +
-                            ": check the path (create one with `meadow capture`)");
-    std::stringstream text;
-    text << in.rdbuf();
-    return parseArchetypeLibrary(text.str(), path.string());
+    std::string text;
+    try {
+        text = readTextFile(path);
+    } catch (const Error& e) {
+        throw ModelingError("cannot open archetype library: " + std::string(e.what()) +
+                            "; check the path (create one with `meadow capture`)");
+    }
+    return parseArchetypeLibrary(text, path.string());
 }
 
 void saveArchetypeLibrary(const ArchetypeLibrary& library, const std::filesystem::path& path) {

@@ -6,9 +6,10 @@
 #include <cmath>
 #include <glm/geometric.hpp>
 #include <numbers>
-#include <random>
 #include <stdexcept>
 #include <string>
+
+#include "meadow/core/random.h"
 
 namespace meadow::modeling {
 namespace {
@@ -65,8 +66,7 @@ KnotTrajectories simulateChain(const std::vector<glm::vec3>& rest,
     windDir = glm::length(windDir) > 1e-6f ? glm::normalize(windDir) : glm::vec3(1.f, 0.f, 0.f);
     const glm::vec3 crossDir = glm::normalize(glm::cross(up, windDir));
 
-    std::mt19937_64 rng(params.seed);
-    std::normal_distribution<float> gauss(0.f, 1.f);
+    Rng rng(params.seed);
     glm::vec3 turbulence{0.f};
     const float dt = params.frameTime_s / static_cast<float>(params.substeps);
     const float decay = std::exp(-params.frameTime_s / params.turbulenceTime_s);
@@ -78,7 +78,7 @@ KnotTrajectories simulateChain(const std::vector<glm::vec3>& rest,
     for (int frame = 0; frame < params.frames; ++frame) {
         // Ornstein-Uhlenbeck turbulence, stationary standard deviation turbulence_mps.
         const float kick = params.turbulence_mps * std::sqrt(1.f - decay * decay);
-        turbulence = decay * turbulence + kick * (gauss(rng) * windDir + gauss(rng) * crossDir);
+        turbulence = decay * turbulence + kick * (rng.normal() * windDir + rng.normal() * crossDir);
         for (int step = 0; step < params.substeps; ++step) {
             const float gust = std::sin(std::numbers::pi_v<float> * params.gustFrequency_hz * t);
             const glm::vec3 wind =

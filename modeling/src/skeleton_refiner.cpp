@@ -6,8 +6,9 @@
 #include <glm/geometric.hpp>
 #include <limits>
 #include <numeric>
-#include <random>
 #include <stdexcept>
+
+#include "meadow/core/random.h"
 
 namespace meadow::modeling {
 namespace {
@@ -184,27 +185,13 @@ std::vector<int> refineRandom(int knotCount, int m, std::uint64_t seed) {
     if (m >= knotCount) return allIndices(knotCount);
     std::vector<int> interior(static_cast<std::size_t>(knotCount - 2));
     std::iota(interior.begin(), interior.end(), 1);
-    std::mt19937_64 rng(seed);
-    std::shuffle(interior.begin(), interior.end(), rng);
+    Rng rng(seed);
+    std::shuffle(interior.begin(), interior.end(), rng.engine());
     std::vector<int> kept(interior.begin(), interior.begin() + (m - 2));
     kept.push_back(0);
     kept.push_back(knotCount - 1);
     std::sort(kept.begin(), kept.end());
     return kept;
-}
-
-std::string toString(RefinerKind kind) {
-    switch (kind) {
-        case RefinerKind::MovementSimilarity:
-            return "movement_similarity";
-        case RefinerKind::Random:
-            return "random";
-        case RefinerKind::Mean:
-            return "mean";
-        case RefinerKind::GeometryOnly:
-            return "geometry_only";
-    }
-    return "unknown";
 }
 
 std::vector<int> refine(RefinerKind kind, const std::vector<glm::vec3>& restKnots,

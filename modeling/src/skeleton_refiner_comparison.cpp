@@ -4,7 +4,7 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "meadow/capture/atomic_file.h"
+#include "meadow/core/atomic_file.h"
 #include "meadow/modeling/hausdorff.h"
 #include "meadow/modeling/skeleton_refiner.h"
 

@@ -4,10 +4,10 @@
 #include <cmath>
 #include <cstdint>
 #include <numbers>
-#include <random>
 #include <stdexcept>
 #include <string>
 
+#include "meadow/core/random.h"
 #include "meadow/modeling/synthetic_tuft.h"
 
 namespace meadow::modeling {
@@ -27,21 +27,6 @@ constexpr int kMeshSegments = 40;
 constexpr float kBaseSpread_m = 0.006f;
 // The camera looks at this fraction of the tallest blade's height above the ground.
 constexpr float kTargetHeightFraction = 0.45f;
-
-// A deterministic generator: std::mt19937_64 is specified bit for bit by the standard, the
-// std::*_distribution classes are not, so uniform numbers are made here from its raw output.
-class Rng {
-public:
-    explicit Rng(std::uint64_t seed) : engine_(seed) {}
-    float uniform(float lo, float hi) {
-        const float u = static_cast<float>(engine_() >> 40) * 0x1.0p-24f;  // [0, 1)
-        return lo + (hi - lo) * u;
-    }
-    bool chance(float p) { return uniform(0.f, 1.f) < p; }
-
-private:
-    std::mt19937_64 engine_;
-};
 
 // Relative width (0..1 of the maximum) at arc-length fraction s, piecewise linear.
 using WidthShape = float (*)(float s);

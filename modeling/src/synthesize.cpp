@@ -9,10 +9,11 @@
 #include <stdexcept>
 #include <system_error>
 
-#include "archetype_json.h"
-#include "meadow/capture/atomic_file.h"
 #include "meadow/capture/recording.h"
 #include "meadow/capture/simulated_sensor.h"
+#include "meadow/core/atomic_file.h"
+#include "meadow/core/json_reader.h"
+#include "meadow/core/random.h"
 #include "meadow/modeling/error.h"
 
 namespace meadow::modeling {
@@ -35,16 +36,7 @@ std::string frameName(int index) {
     return name;
 }
 
-// The float's shortest decimal, as a double: JSON then shows "0.1", not 0.10000000149011612,
-// and reading it back into a float gives the same float.
-double tidy(float value) {
-    char text[32];
-    const auto [end, ec] = std::to_chars(text, text + sizeof text, value);
-    if (ec != std::errc{}) return value;
-    double out = value;
-    std::from_chars(text, end, out);
-    return out;
-}
+double tidy(float value) { return shortestDouble(value); }
 
 json vecJson(const glm::vec3& v) { return json::array({tidy(v.x), tidy(v.y), tidy(v.z)}); }
 
@@ -65,32 +57,21 @@ json bladeJson(const SynthTruthBlade& b) {
             {"face_normal_camera", vecJson(b.faceNormalCamera)}};
 }
 
-std::vector<float> floatArray(const json& array, const std::string& path) {
-    if (!array.is_array()) throw detail::JsonFieldError(path, "must be an array");
-    std::vector<float> out;
-    for (std::size_t i = 0; i < array.size(); ++i)
-        out.push_back(detail::finiteNumber(array[i], path + "[" + std::to_string(i) + "]"));
-    return out;
-}
-
 SynthTruthBlade bladeFromJson(const json& value, const std::string& path) {
-    const detail::JsonReader r(value, path);
+    const JsonReader r(value, path);
     SynthTruthBlade b;
-    b.id = r.integer("id");
-    if (b.id < 1 || b.id > 65535)
-        throw detail::JsonFieldError(r.pathOf("id"), "must be a label in [1, 65535]");
+    b.id = r.integer("id", 1, 65535);
     b.archetype = r.string("archetype");
-    b.height_m = r.number("height_m");
-    const detail::JsonReader spine(r.object("spine_camera_m"), r.pathOf("spine_camera_m"));
+    b.height_m = r.floatNumber("height_m");
+    const JsonReader spine = r.object("spine_camera_m");
     b.spineCamera_m = {spine.vec3("v0"), spine.vec3("v1"), spine.vec3("v2")};
-    const detail::JsonReader profile(r.object("width_profile"), r.pathOf("width_profile"));
-    b.widthFraction = floatArray(profile.array("s"), profile.pathOf("s"));
-    b.width_m = floatArray(profile.array("width_m"), profile.pathOf("width_m"));
+    const JsonReader profile = r.object("width_profile");
+    b.widthFraction = profile.floatArray("s");
+    b.width_m = profile.floatArray("width_m");
     if (b.widthFraction.size() != b.width_m.size() || b.width_m.size() < 2)
-        throw detail::JsonFieldError(r.pathOf("width_profile"),
-                                     "needs s and width_m of the same length, at least 2");
-    b.leftWidthFraction = r.number("left_width_fraction");
-    b.twistAtTip_rad = r.number("twist_at_tip_rad");
+        r.fail("width_profile", "needs s and width_m of the same length, at least 2");
+    b.leftWidthFraction = r.floatNumber("left_width_fraction");
+    b.twistAtTip_rad = r.floatNumber("twist_at_tip_rad");
     b.faceNormalCamera = r.vec3("face_normal_camera");
     return b;
 }
@@ -223,88 +204,72 @@ std::string synthTruthToJson(const SynthTruth& truth) {
 }
 
 SynthTruth parseSynthTruth(std::string_view text, const std::string& sourceName) {
-    json doc;
     try {
-        doc = json::parse(text);
-    } catch (const json::parse_error& e) {
-        throw ModelingError(sourceName + " is not valid JSON (" + e.what() +
-                            "); regenerate it with meadow synth");
-    }
-    try {
-        const detail::JsonReader r(doc);
-        const std::string format = r.string("format");
-        if (format != kSynthTruthFormatName)
-            throw ModelingError(sourceName + " is a '" + format + "' file, not " +
-                                std::string(kSynthTruthFormatName) +
-                                ": pass the truth/blades.json that meadow synth wrote");
-        const int version = r.integer("version");
-        if (version != kSynthTruthFormatVersion)
-            throw ModelingError(sourceName + " has " + std::string(kSynthTruthFormatName) +
-                                " version " + std::to_string(version) + "; this meadow reads " +
-                                "version " + std::to_string(kSynthTruthFormatVersion) +
-                                ": regenerate it or update meadow");
+        const json doc = parseJsonObject(text);
+        checkJsonFormat(doc, {kSynthTruthFormatName, kSynthTruthFormatVersion});
+        const JsonReader r(doc);
         SynthTruth t;
         t.preset = r.string("preset");
-        const json& seed = doc.at("seed");
+        const json& seed = r.at("seed");
         if (!seed.is_number_unsigned() && !(seed.is_number_integer() && seed.get<long long>() >= 0))
-            throw detail::JsonFieldError("seed", "must be a non-negative integer");
+            r.fail("seed", "must be a non-negative integer");
         t.seed = seed.get<std::uint64_t>();
-        t.noiseScale = r.number("noise_scale");
-        t.sensorNoiseScale = r.number("sensor_noise_scale");
-        t.distance_m = r.number("distance_m");
-        t.cameraTilt_rad = r.number("camera_tilt_rad");
-        const detail::JsonReader k(r.object("intrinsics"), "intrinsics");
-        t.intrinsics = {k.integer("width_px"), k.integer("height_px"), k.number("fx_px"),
-                        k.number("fy_px"),     k.number("cx_px"),      k.number("cy_px")};
+        t.noiseScale = r.floatNumber("noise_scale");
+        t.sensorNoiseScale = r.floatNumber("sensor_noise_scale");
+        t.distance_m = r.floatNumber("distance_m");
+        t.cameraTilt_rad = r.floatNumber("camera_tilt_rad");
+        const JsonReader k = r.object("intrinsics");
+        constexpr int kMaxSide_px = 1 << 16;
+        t.intrinsics = {k.integer("width_px", 1, kMaxSide_px),
+                        k.integer("height_px", 1, kMaxSide_px),
+                        k.floatNumber("fx_px"),
+                        k.floatNumber("fy_px"),
+                        k.floatNumber("cx_px"),
+                        k.floatNumber("cy_px")};
         if (const std::string problem = t.intrinsics.problem(); !problem.empty())
-            throw detail::JsonFieldError("intrinsics", problem);
-        const std::vector<float> m =
-            floatArray(r.array("camera_from_world_row_major"), "camera_from_world_row_major");
-        if (m.size() != 16)
-            throw detail::JsonFieldError("camera_from_world_row_major", "must hold 16 numbers");
+            r.fail("intrinsics", problem);
+        const std::vector<float> m = r.floatArray("camera_from_world_row_major");
+        if (m.size() != 16) r.fail("camera_from_world_row_major", "must hold 16 numbers");
         for (int row = 0; row < 4; ++row)
             for (int col = 0; col < 4; ++col) t.cameraFromWorld[col][row] = m[4 * row + col];
         const json& frames = r.array("frames");
         for (std::size_t i = 0; i < frames.size(); ++i) {
-            const std::string path = "frames[" + std::to_string(i) + "]";
-            const detail::JsonReader f(frames[i], path);
+            const JsonReader f(frames[i], elementPath("frames", i));
             SynthTruthFrame frame;
-            frame.index = f.integer("index");
-            // A double, unlike the float fields: read it whole, not through JsonReader::number.
-            const json& stamp = frames[i].at("timestamp_s");
-            if (!stamp.is_number() || !std::isfinite(stamp.get<double>()))
-                throw detail::JsonFieldError(f.pathOf("timestamp_s"), "must be a finite number");
-            frame.timestamp_s = stamp.get<double>();
+            frame.index = f.integer("index", 0, kMaxSynthFrames);
+            frame.timestamp_s = f.number("timestamp_s");  // a double, unlike the float fields
             frame.labels = f.string("labels");
             const json& blades = f.array("blades");
             for (std::size_t j = 0; j < blades.size(); ++j)
                 frame.blades.push_back(
-                    bladeFromJson(blades[j], path + ".blades[" + std::to_string(j) + "]"));
+                    bladeFromJson(blades[j], elementPath(f.pathOf("blades"), j)));
             t.frames.push_back(std::move(frame));
         }
         return t;
-    } catch (const detail::JsonFieldError& e) {
-        throw ModelingError(sourceName + ": " + e.what() + "; regenerate it with meadow synth");
-    } catch (const json::exception& e) {
-        throw ModelingError(sourceName + ": " + e.what() + "; regenerate it with meadow synth");
+    } catch (const JsonError& e) {
+        const char* hint = e.kind() == JsonError::Kind::WrongFormat
+                               ? ": pass the truth/blades.json that meadow synth wrote"
+                           : e.kind() == JsonError::Kind::WrongVersion
+                               ? ": regenerate it or update meadow"
+                               : "; regenerate it with meadow synth";
+        throw ModelingError(sourceName + ": " + e.what() + hint);
     }
 }
 
 SynthTruth readSynthTruth(const fs::path& file) {
-    std::ifstream in(file, std::ios::binary);
-    if (!in)
-        throw ModelingError("cannot read " + file.string() +
+    std::string text;
+    try {
+        text = readTextFile(file);
+    } catch (const Error& e) {
+        throw ModelingError(std::string(e.what()) +
                             ": check the path (meadow synth writes OUT/truth/blades.json)");
-    std::stringstream text;
-    text << in.rdbuf();
-    return parseSynthTruth(text.str(), file.string());
+    }
+    return parseSynthTruth(text, file.string());
 }
 
 std::uint64_t synthFrameSeed(std::uint64_t seed, std::uint64_t frame) {
-    std::uint64_t z = seed + 0x9e3779b97f4a7c15ull * (frame + 1);
-    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
-    z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
-    return z ^ (z >> 31);
+    std::uint64_t state = seed + 0x9E3779B97F4A7C15ull * frame;  // SplitMix64's Weyl step
+    return splitMix64(state);
 }
 
 SynthTruth synthesize(const SynthOptions& options,

@@ -4,10 +4,10 @@
 #include <cmath>
 #include <glm/geometric.hpp>
 #include <numeric>
-#include <random>
 #include <unordered_map>
 
 #include "ground_maps.h"
+#include "meadow/core/random.h"
 #include "meadow/runtime/error.h"
 #include "short_number.h"
 
@@ -26,20 +26,6 @@ constexpr float kDerivedSpacingFraction = 0.7f;
 constexpr float kTuftLeanJitter_rad = 0.6f;
 // Top-up singles are tried this many times per missing blade before the count is trimmed instead.
 constexpr int kTopUpAttemptsPerBlade = 50;
-
-// Reproducible uniform numbers: the standard distributions differ between library versions.
-class Random {
-public:
-    explicit Random(std::uint32_t seed) : engine_(seed) {}
-    float uniform() { return static_cast<float>(engine_() >> 8) * (1.f / 16777216.f); }  // [0, 1)
-    float uniform(glm::vec2 range) { return range.x + (range.y - range.x) * uniform(); }
-    int integer(int lo, int hi) {
-        return lo + static_cast<int>(uniform() * static_cast<float>(hi - lo + 1));
-    }
-
-private:
-    std::mt19937 engine_;
-};
 
 struct SurfacePoint {
     glm::vec3 position_m;
@@ -65,7 +51,7 @@ public:
     }
     [[nodiscard]] double area_m2() const { return area_m2_; }
 
-    SurfacePoint sample(Random& random) const {
+    SurfacePoint sample(Rng& random) const {
         const double x = static_cast<double>(random.uniform()) * area_m2_;
         const std::size_t k = std::min<std::size_t>(
             std::upper_bound(cumulative_.begin(), cumulative_.end(), x) - cumulative_.begin(),
@@ -121,7 +107,7 @@ private:
     std::unordered_map<std::uint64_t, std::vector<glm::vec3>> cells_;
 };
 
-std::uint32_t pickArchetype(const std::vector<float>& cumulativeWeights, Random& random) {
+std::uint32_t pickArchetype(const std::vector<float>& cumulativeWeights, Rng& random) {
     const float x = random.uniform() * cumulativeWeights.back();
     const auto it = std::upper_bound(cumulativeWeights.begin(), cumulativeWeights.end(), x);
     return static_cast<std::uint32_t>(
@@ -159,7 +145,7 @@ std::vector<SeededBlade> seedBlades(const SeedingInput& in) {
     std::partial_sum(in.archetypeWeights->begin(), in.archetypeWeights->end(),
                      cumulativeWeights.begin());
 
-    Random random(p.seed);
+    Rng random(p.seed);
     const auto wanted =
         static_cast<std::size_t>(std::llround(p.density_per_m2 * sampler.area_m2()));
     std::vector<SeededBlade> blades;
@@ -185,9 +171,9 @@ std::vector<SeededBlade> seedBlades(const SeedingInput& in) {
             const std::uint8_t k = in.archetypeMap.at<std::uint8_t>(texel.y, texel.x);
             if (k != kArchetypeByWeights) b.archetype = k;
         }
-        b.heightScale = random.uniform(p.heightScale);
-        b.widthScale = random.uniform(p.widthScale);
-        b.stiffness = random.uniform(p.stiffness);
+        b.heightScale = random.uniform(p.heightScale.x, p.heightScale.y);
+        b.widthScale = random.uniform(p.widthScale.x, p.widthScale.y);
+        b.stiffness = random.uniform(p.stiffness.x, p.stiffness.y);
         b.mesh = s.mesh;
         b.triangle = s.triangle;
         b.inTuft = tuft;

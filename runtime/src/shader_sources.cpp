@@ -1,6 +1,6 @@
 #include "shader_sources.h"
 
-#include "meadow/capture/error.h"
+#include "meadow/runtime/error.h"
 
 namespace meadow::runtime::detail {
 

@@ -1,4 +1,4 @@
-#include "meadow/capture/atomic_file.h"
+#include "meadow/core/atomic_file.h"
 
 #include <gtest/gtest.h>
 

@@ -117,7 +117,7 @@ TEST(ArchetypeLibrary, RejectsMalformedDocumentsWithTheReason) {
     expectRejected("{\"format\": ", "not valid JSON");
     expectRejected("[1, 2]", "JSON object");
     expectRejected(R"({"format": "something-else", "version": 1})",
-                   "expected 'meadow.archetype-library'");
+                   "expected \"meadow.archetype-library\"");
     expectRejected(R"({"format": "meadow.archetype-library", "version": 99, "archetypes": []})",
                    "version 99 is not supported");
     expectRejected(R"({"format": "meadow.archetype-library", "version": 1, "archetypes": []})",

@@ -10,9 +10,9 @@
 #include <opencv2/imgproc.hpp>
 #include <set>
 
-#include "meadow/capture/atomic_file.h"
 #include "meadow/capture/recording.h"
 #include "meadow/capture/simulated_sensor.h"
+#include "meadow/core/atomic_file.h"
 #include "meadow/modeling/error.h"
 #include "meadow/modeling/synthesize.h"
 #include "truth_oracles.h"

@@ -81,9 +81,13 @@ TEST(ScenePhysics, OutOfRangeAndRenamedFieldsAreOneClearLine) {
         std::string expected;
     };
     for (const Case& c :
-         {Case{"physics", "gravity_center_mix", 1.5, "physics.gravity_center_mix: value 1.5"},
+         {Case{"physics", "gravity_center_mix", 1.5,
+               "physics.gravity_center_mix: must lie in [0, 1], got 1.5"},
           Case{"physics", "gravity_center_m_s2", -1, "physics.gravity_center_m_s2"},
-          Case{"physics", "gravity_center_m", {0, 1}, "physics.gravity_center_m: expected [x, y"},
+          Case{"physics",
+               "gravity_center_m",
+               {0, 1},
+               "physics.gravity_center_m: must be an array of 3 numbers"},
           Case{"physics", "gravity_direction", {0, 0, 0}, "must not be zero"},
           Case{"wind", "source_radius_m", 0, "wind.source_radius_m"},
           Case{"wind", "wavelength_m", -2, "wind.wavelength_m"},

@@ -53,7 +53,7 @@ TEST(SceneFile, BadFilesGiveOneClearLineNamingFileAndField) {
          {Case{wrongFormat, "format"}, Case{newVersion, "version 2 is not supported"},
           Case{typo, "blades.densty_per_m2: unknown field"}, Case{missingMesh, "nowhere.glb"},
           Case{missingLibrary, "no_library.json"}, Case{badRange, "blades.height_scale"},
-          Case{outOfRange, "blades.density_per_m2: value -5 outside [0, 100000]"}}) {
+          Case{outOfRange, "blades.density_per_m2: must lie in [0, 100000], got -5"}}) {
         const std::string message = errorOf(dir, c.scene);
         EXPECT_NE(message.find(c.expected), std::string::npos) << "got: " << message;
         EXPECT_NE(message.find("scene.json"), std::string::npos) << "names the file: " << message;

@@ -11,24 +11,6 @@
 
 namespace meadow::capture {
 
-std::string toString(BladeFlag flag) {
-    switch (flag) {
-        case BladeFlag::Overlapping:
-            return "overlapping";
-        case BladeFlag::CurlsSideways:
-            return "curls-sideways";
-        case BladeFlag::TooThin:
-            return "too-thin";
-        case BladeFlag::BaseHidden:
-            return "base-hidden";
-        case BladeFlag::Asymmetric:
-            return "asymmetric";
-        case BladeFlag::Truncated:
-            return "truncated";
-    }
-    return "unknown";
-}
-
 namespace segmentation {
 
 namespace {

@@ -4,8 +4,8 @@
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
-#include "meadow/capture/atomic_file.h"
 #include "meadow/capture/error.h"
+#include "meadow/core/atomic_file.h"
 #include "segmentation/stages.h"
 
 namespace meadow::capture {

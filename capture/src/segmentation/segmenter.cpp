@@ -14,47 +14,6 @@ namespace meadow::capture {
 
 namespace seg = segmentation;
 
-std::string toString(PlaneMethod m) {
-    switch (m) {
-        case PlaneMethod::None:
-            return "none";
-        case PlaneMethod::Ransac:
-            return "ransac";
-        case PlaneMethod::OrganizedMultiPlane:
-            return "organized-multi-plane";
-    }
-    return "unknown";
-}
-std::string toString(FusionMethod m) {
-    switch (m) {
-        case FusionMethod::Median:
-            return "median";
-        case FusionMethod::NearestRecurring:
-            return "nearest-recurring";
-    }
-    return "unknown";
-}
-std::string toString(OutlierMethod m) {
-    switch (m) {
-        case OutlierMethod::None:
-            return "none";
-        case OutlierMethod::OrganizedNeighbourhood:
-            return "organized-neighbourhood";
-        case OutlierMethod::Statistical:
-            return "statistical";
-    }
-    return "unknown";
-}
-std::string toString(ReferencePoint r) {
-    switch (r) {
-        case ReferencePoint::ContourCentre:
-            return "contour-centre";
-        case ReferencePoint::BasePoint:
-            return "base-point";
-    }
-    return "unknown";
-}
-
 namespace {
 // Sanity limits for parameters: beyond them a value is a typo, not a choice.
 constexpr float kMaxDepth_m = 20.0f;

@@ -9,7 +9,7 @@
 #include <iostream>
 #include <sstream>
 
-#include "meadow/capture/atomic_file.h"
+#include "meadow/core/atomic_file.h"
 
 namespace meadow::bench {
 namespace {

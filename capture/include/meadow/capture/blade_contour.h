@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "meadow/capture/depth_frame.h"
+#include "meadow/core/enum_names.h"
 
 namespace meadow::capture {
 
@@ -19,7 +20,15 @@ enum class BladeFlag {
     Asymmetric,     // the two sides differ more than the symmetric match tolerates
     Truncated,      // touches the image border
 };
-std::string toString(BladeFlag flag);
+inline constexpr EnumNames<BladeFlag, 6> kBladeFlagNames{{{
+    {BladeFlag::Overlapping, "overlapping"},
+    {BladeFlag::CurlsSideways, "curls-sideways"},
+    {BladeFlag::TooThin, "too-thin"},
+    {BladeFlag::BaseHidden, "base-hidden"},
+    {BladeFlag::Asymmetric, "asymmetric"},
+    {BladeFlag::Truncated, "truncated"},
+}}};
+inline std::string toString(BladeFlag flag) { return std::string(kBladeFlagNames.name(flag)); }
 
 struct BladeContour {
     int id = 0;                         // 1.. within its frame

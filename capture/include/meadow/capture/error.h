@@ -1,23 +1,12 @@
 #pragma once
-// Runtime failures (missing file, corrupt data, driver errors) are thrown as one exception
-// type per layer, all derived from meadow::Error. The message says what failed, which file,
-// and what to do; only cli/ prints it and picks the exit code. Broken preconditions
-// (programmer errors) are std::invalid_argument / std::logic_error instead.
-#include <stdexcept>
-#include <string>
+#include "meadow/core/error.h"
 
-namespace meadow {
+namespace meadow::capture {
 
-class Error : public std::runtime_error {
-public:
-    using std::runtime_error::runtime_error;
-};
-
-namespace capture {
+// Runtime failures of the capture layer (unreadable recording, driver errors, bad frames).
 class CaptureError : public Error {
 public:
     using Error::Error;
 };
-}  // namespace capture
 
-}  // namespace meadow
+}  // namespace meadow::capture

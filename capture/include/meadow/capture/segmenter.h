@@ -27,6 +27,7 @@
 #include "meadow/capture/blade_contour.h"
 #include "meadow/capture/depth_frame.h"
 #include "meadow/capture/recurring_readings.h"
+#include "meadow/core/enum_names.h"
 
 namespace meadow::capture {
 
@@ -60,10 +61,28 @@ enum class FusionMethod {
     NearestRecurring,
 };
 
-std::string toString(PlaneMethod);
-std::string toString(FusionMethod);
-std::string toString(OutlierMethod);
-std::string toString(ReferencePoint);
+inline constexpr EnumNames<PlaneMethod, 3> kPlaneMethodNames{{{
+    {PlaneMethod::None, "none"},
+    {PlaneMethod::Ransac, "ransac"},
+    {PlaneMethod::OrganizedMultiPlane, "organized-multi-plane"},
+}}};
+inline constexpr EnumNames<FusionMethod, 2> kFusionMethodNames{{{
+    {FusionMethod::Median, "median"},
+    {FusionMethod::NearestRecurring, "nearest-recurring"},
+}}};
+inline constexpr EnumNames<OutlierMethod, 3> kOutlierMethodNames{{{
+    {OutlierMethod::None, "none"},
+    {OutlierMethod::OrganizedNeighbourhood, "organized-neighbourhood"},
+    {OutlierMethod::Statistical, "statistical"},
+}}};
+inline constexpr EnumNames<ReferencePoint, 2> kReferencePointNames{{{
+    {ReferencePoint::ContourCentre, "contour-centre"},
+    {ReferencePoint::BasePoint, "base-point"},
+}}};
+inline std::string toString(PlaneMethod m) { return std::string(kPlaneMethodNames.name(m)); }
+inline std::string toString(FusionMethod m) { return std::string(kFusionMethodNames.name(m)); }
+inline std::string toString(OutlierMethod m) { return std::string(kOutlierMethodNames.name(m)); }
+inline std::string toString(ReferencePoint r) { return std::string(kReferencePointNames.name(r)); }
 
 struct SegmenterParams {
     // --- Depth band (Sec. 4.1). nearDepth_m < farDepth_m sets the band; both 0 = automatic:

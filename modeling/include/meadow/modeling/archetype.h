@@ -9,12 +9,22 @@
 #include <string>
 #include <vector>
 
+#include "meadow/core/enum_names.h"
 #include "meadow/modeling/quadratic_bezier.h"
 
 namespace meadow::modeling {
 
 // Nearest analytic blade shape of Jahrmann & Wimmer 2017, Sec. 6.2 (their Fig. 6).
 enum class AnalyticShape { Quad, Triangle, Quadratic, TriangleTip };
+inline constexpr EnumNames<AnalyticShape, 4> kAnalyticShapeNames{{{
+    {AnalyticShape::Quad, "quad"},
+    {AnalyticShape::Triangle, "triangle"},
+    {AnalyticShape::Quadratic, "quadratic"},
+    {AnalyticShape::TriangleTip, "triangle-tip"},
+}}};
+inline std::string toString(AnalyticShape shape) {
+    return std::string(kAnalyticShapeNames.name(shape));
+}
 
 struct WidthProfile {
     // Full width (m) at evenly spaced arc-length fractions s_i = i / (n - 1), s = 0 at the base,

@@ -4,13 +4,14 @@
 // holding one mesh per archetype for DCC tools.
 #include <filesystem>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "meadow/modeling/archetype.h"
 
 namespace meadow::modeling {
 
-inline constexpr const char* kArchetypeLibraryFormat = "meadow.archetype-library";
+inline constexpr std::string_view kArchetypeLibraryFormat = "meadow.archetype-library";
 inline constexpr int kArchetypeLibraryVersion = 1;
 
 // A record that archetypes were merged as near-duplicates (--max-archetypes).
@@ -36,7 +37,5 @@ void saveArchetypeLibrary(const ArchetypeLibrary& library, const std::filesystem
 // Parse / serialise without files (the loader and writer use these).
 ArchetypeLibrary parseArchetypeLibrary(const std::string& jsonText, const std::string& origin);
 std::string serialiseArchetypeLibrary(const ArchetypeLibrary& library);
-
-std::string toString(AnalyticShape shape);
 
 }  // namespace meadow::modeling

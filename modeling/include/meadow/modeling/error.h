@@ -1,5 +1,5 @@
 #pragma once
-#include "meadow/capture/error.h"
+#include "meadow/core/error.h"
 
 namespace meadow::modeling {
 

@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "meadow/core/enum_names.h"
 #include "meadow/modeling/chain_simulation.h"
 
 namespace meadow::modeling {
@@ -53,7 +54,13 @@ std::vector<int> refineMean(const std::vector<glm::vec3>& knots, int m);
 std::vector<int> refineGeometryOnly(const std::vector<glm::vec3>& knots, int m);
 
 enum class RefinerKind { MovementSimilarity, Random, Mean, GeometryOnly };
-std::string toString(RefinerKind kind);
+inline constexpr EnumNames<RefinerKind, 4> kRefinerKindNames{{{
+    {RefinerKind::MovementSimilarity, "movement_similarity"},
+    {RefinerKind::Random, "random"},
+    {RefinerKind::Mean, "mean"},
+    {RefinerKind::GeometryOnly, "geometry_only"},
+}}};
+inline std::string toString(RefinerKind kind) { return std::string(kRefinerKindNames.name(kind)); }
 std::vector<int> refine(RefinerKind kind, const std::vector<glm::vec3>& restKnots,
                         const KnotTrajectories& frames, int m, const RefinerParams& params = {});
 

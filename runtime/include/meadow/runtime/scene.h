@@ -9,6 +9,7 @@
 #include <glm/vec3.hpp>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "meadow/modeling/archetype.h"
@@ -16,7 +17,7 @@
 
 namespace meadow::runtime {
 
-inline constexpr const char* kSceneFormat = "meadow.scene";
+inline constexpr std::string_view kSceneFormat = "meadow.scene";
 inline constexpr int kSceneVersion = 1;
 
 struct SceneMesh {

@@ -1,10 +1,10 @@
-#include "meadow/capture/atomic_file.h"
+#include "meadow/core/atomic_file.h"
 
 #include <unistd.h>
 
 #include <system_error>
 
-#include "meadow/capture/error.h"
+#include "meadow/core/error.h"
 
 namespace meadow {
 
