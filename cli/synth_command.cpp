@@ -6,7 +6,7 @@
 
 #include "commands.h"
 #include "meadow/modeling/error.h"
-#include "meadow/modeling/synthesize.h"
+#include "meadow/synth/synthesize.h"
 #include "progress.h"
 
 namespace meadow::cli {
@@ -14,7 +14,7 @@ namespace meadow::cli {
 namespace {
 
 struct SynthArgs {
-    modeling::SynthOptions options;
+    synth::SynthOptions options;
     std::string out;
     bool list = false;
 };
@@ -22,8 +22,8 @@ struct SynthArgs {
 void runSynth(const SynthArgs& args) {
     if (args.list) {
         std::size_t width = 0;
-        for (const auto& p : modeling::synthPresets()) width = std::max(width, p.name.size());
-        for (const auto& p : modeling::synthPresets())
+        for (const auto& p : synth::synthPresets()) width = std::max(width, p.name.size());
+        for (const auto& p : synth::synthPresets())
             std::cout << p.name << std::string(width + 2 - p.name.size(), ' ') << p.description
                       << '\n';
         return;
@@ -32,14 +32,14 @@ void runSynth(const SynthArgs& args) {
         throw modeling::ModelingError(
             "synth needs --preset NAME and --out DIR (or --list to see the presets); known "
             "presets: " +
-            modeling::synthPresetNames());
-    if (!modeling::findSynthPreset(args.options.preset))
+            synth::synthPresetNames());
+    if (!synth::findSynthPreset(args.options.preset))
         throw modeling::ModelingError("unknown preset '" + args.options.preset +
-                                      "'; known presets: " + modeling::synthPresetNames());
-    modeling::SynthOptions options = args.options;
+                                      "'; known presets: " + synth::synthPresetNames());
+    synth::SynthOptions options = args.options;
     options.out = args.out;
     Progress progress("synth " + options.preset, static_cast<std::size_t>(options.frames));
-    modeling::synthesize(
+    synth::synthesize(
         options, [&progress](int done, int) { progress.update(static_cast<std::size_t>(done)); });
     progress.finish();
     std::cout << "wrote " << options.frames << " frame(s) of '" << options.preset << "' to "
@@ -62,7 +62,7 @@ void addSynthCommand(CLI::App& app) {
                       "recording)");
     synth->add_option("--frames", args->options.frames, "Frames to render")
         ->capture_default_str()
-        ->check(CLI::Range(1, modeling::kMaxSynthFrames));
+        ->check(CLI::Range(1, synth::kMaxSynthFrames));
     synth
         ->add_option("--seed", args->options.seed,
                      "Random seed: the same seed gives the same files, byte for byte")
@@ -78,11 +78,11 @@ void addSynthCommand(CLI::App& app) {
         ->add_option("--distance", args->options.distance_m,
                      "Camera distance to the tuft in metres (default: the preset's, "
                      "0.7-1.0)")
-        ->check(CLI::Range(modeling::kMinSynthDistance_m, modeling::kMaxSynthDistance_m));
+        ->check(CLI::Range(synth::kMinSynthDistance_m, synth::kMaxSynthDistance_m));
     synth
         ->add_option("--blades", args->options.bladeCount,
                      "Number of blades (default: the preset's, 4-9)")
-        ->check(CLI::Range(modeling::kMinSynthBlades, modeling::kMaxSynthBlades));
+        ->check(CLI::Range(synth::kMinSynthBlades, synth::kMaxSynthBlades));
     synth->add_flag("--list", args->list, "List the presets, one a line, and exit");
     synth->callback([args]() { runSynth(*args); });
 }

@@ -9,6 +9,12 @@ function(meadow_add_layer name)
     PUBLIC ${CMAKE_CURRENT_SOURCE_DIR}/include
     PRIVATE ${CMAKE_CURRENT_SOURCE_DIR}/src)
   target_link_libraries(meadow_${name} PUBLIC ${ARG_PUBLIC} PRIVATE ${ARG_PRIVATE})
+  # The layer's private headers, for its own unit tests and benches only (tests of one stage
+  # include "segmentation/stages.h"); no other layer links this.
+  add_library(meadow_${name}_internals INTERFACE)
+  add_library(meadow::${name}_internals ALIAS meadow_${name}_internals)
+  target_include_directories(meadow_${name}_internals INTERFACE ${CMAKE_CURRENT_SOURCE_DIR}/src)
+  target_link_libraries(meadow_${name}_internals INTERFACE meadow_${name})
 endfunction()
 
 # meadow_add_test_suite(NAME DIR LIBS...): one GoogleTest program from tests/<dir>/*.cpp.

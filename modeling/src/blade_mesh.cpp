@@ -98,20 +98,4 @@ TriangleMesh transformed(const TriangleMesh& mesh, const glm::mat4& targetFromSo
     return out;
 }
 
-capture::LabelledMesh placeBlade(const TriangleMesh& bladeLocal, const glm::mat4& cameraFromBlade,
-                                 std::uint16_t label) {
-    capture::LabelledMesh out;
-    out.label = label;
-    out.triangles = bladeLocal.triangles;
-    out.positions_m.reserve(bladeLocal.positions_m.size());
-    for (const glm::vec3& p : bladeLocal.positions_m)
-        out.positions_m.push_back(glm::vec3(cameraFromBlade * glm::vec4(p, 1.f)));
-    return out;
-}
-
-capture::LabelledMesh placeBlade(const Archetype& archetype, const glm::mat4& cameraFromBlade,
-                                 std::uint16_t label, const BladeMeshOptions& options) {
-    return placeBlade(bladeMesh(archetype, options), cameraFromBlade, label);
-}
-
 }  // namespace meadow::modeling

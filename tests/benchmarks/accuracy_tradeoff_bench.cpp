@@ -1,6 +1,6 @@
 // Accuracy against speed, measured against the simulated sensor's ground truth (design notes,
 // "Measuring"). Synthetic tufts (modeling/synthetic_tuft.h presets, rendered in memory through
-// capture::SimulatedSensor exactly as `meadow synth` does) go through the segmenter and the blade
+// synth::SimulatedSensor exactly as `meadow synth` does) go through the segmenter and the blade
 // fit; the result is compared with the exact truth. Writes, under --out (default
 // docs/measurements):
 //   segmentation_accuracy.csv/.md  preset x noise: recall, precision, median IoU, flags raised
@@ -29,13 +29,13 @@
 #include "accuracy_tradeoff/scene.h"
 #include "accuracy_tradeoff/tables.h"
 #include "meadow/capture/frame_memory.h"
-#include "meadow/modeling/synthetic_tuft.h"
+#include "meadow/synth/synthetic_tuft.h"
 
 namespace meadow::bench {
 
 Plan makePlan(bool quick) {
     Plan plan;
-    for (const auto& p : modeling::synthPresets()) plan.segmentationPresets.push_back(p.name);
+    for (const auto& p : synth::synthPresets()) plan.segmentationPresets.push_back(p.name);
     if (quick) {
         plan.segmentationPresets = {"quadratic-leaf", "touching", "thin"};
         plan.bladeTypes = {"quadratic-leaf", "sharp-tip"};

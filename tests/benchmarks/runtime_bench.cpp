@@ -11,12 +11,12 @@
 #include <random>
 #include <vector>
 
-#include "../../runtime/src/culling_pass.h"
-#include "../../runtime/src/culling_reference.h"
-#include "../../runtime/src/physics_pass.h"
-#include "../../runtime/src/physics_reference.h"
-#include "../runtime/physics_test_blades.h"
+#include "culling_pass.h"
+#include "culling_reference.h"
 #include "meadow/runtime/gl_context.h"
+#include "physics_pass.h"
+#include "physics_reference.h"
+#include "runtime/physics_test_blades.h"
 
 namespace meadow::runtime {
 namespace {

@@ -10,7 +10,7 @@
 #include "meadow/capture/recurring_readings.h"
 #include "meadow/capture/segmenter.h"
 #include "meadow/capture/tuft_motion.h"
-#include "segmentation/drawn_tuft.h"
+#include "support/drawn_tuft.h"
 
 namespace {
 

@@ -8,8 +8,8 @@
 #include <opencv2/imgproc.hpp>
 #include <string>
 
-#include "../../capture/src/segmentation/stages.h"
 #include "meadow/capture/segmenter.h"
+#include "segmentation/stages.h"
 
 namespace meadow::capture {
 namespace {

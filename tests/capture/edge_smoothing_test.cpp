@@ -7,8 +7,8 @@
 #include <numbers>
 #include <opencv2/imgproc.hpp>
 
-#include "../../capture/src/segmentation/stages.h"
 #include "meadow/capture/segmenter.h"
+#include "segmentation/stages.h"
 
 namespace meadow::capture {
 namespace {

@@ -8,8 +8,8 @@
 #include <iostream>
 #include <string>
 
-#include "../../capture/src/segmentation/drawn_tuft.h"
 #include "meadow/capture/segmenter.h"
+#include "support/drawn_tuft.h"
 
 namespace meadow::capture {
 namespace {

@@ -14,12 +14,12 @@
 #include <opencv2/core.hpp>
 #include <string>
 
-#include "../../capture/src/openni_convert.h"  // private to capture/, tested here
 #include "meadow/capture/depth_source.h"
 #include "meadow/capture/error.h"
 #include "meadow/capture/recording.h"
-#include "shared_data.h"
-#include "test_util.h"
+#include "openni_convert.h"  // private to capture/, tested here
+#include "support/shared_data.h"
+#include "support/test_util.h"
 
 namespace fs = std::filesystem;
 using namespace meadow::capture;

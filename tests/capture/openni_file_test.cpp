@@ -13,8 +13,8 @@
 
 #include "meadow/capture/depth_source.h"
 #include "meadow/capture/error.h"
-#include "shared_data.h"
-#include "test_util.h"
+#include "support/shared_data.h"
+#include "support/test_util.h"
 
 namespace fs = std::filesystem;
 using namespace meadow::capture;

@@ -14,7 +14,7 @@
 #include "meadow/capture/depth_source.h"
 #include "meadow/capture/error.h"
 #include "meadow/capture/recording.h"
-#include "test_util.h"
+#include "support/test_util.h"
 
 namespace fs = std::filesystem;
 using namespace meadow::capture;

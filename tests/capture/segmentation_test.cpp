@@ -9,10 +9,10 @@
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
-#include "../../capture/src/segmentation/drawn_tuft.h"
-#include "../../capture/src/segmentation/stages.h"
 #include "meadow/capture/error.h"
 #include "meadow/capture/segmenter.h"
+#include "segmentation/stages.h"
+#include "support/drawn_tuft.h"
 
 namespace meadow::capture {
 namespace {

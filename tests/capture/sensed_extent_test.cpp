@@ -6,11 +6,11 @@
 #include <filesystem>
 #include <opencv2/imgproc.hpp>
 
-#include "../../capture/src/segmentation/drawn_tuft.h"
-#include "../../capture/src/segmentation/stages.h"
 #include "meadow/capture/depth_source.h"
 #include "meadow/capture/segmenter.h"
-#include "shared_data.h"
+#include "segmentation/stages.h"
+#include "support/drawn_tuft.h"
+#include "support/shared_data.h"
 
 namespace meadow::capture {
 namespace {

@@ -5,9 +5,9 @@
 
 #include <opencv2/imgproc.hpp>
 
-#include "../../capture/src/segmentation/stages.h"
 #include "meadow/capture/error.h"
 #include "meadow/capture/segmenter.h"
+#include "segmentation/stages.h"
 
 namespace meadow::capture {
 namespace {

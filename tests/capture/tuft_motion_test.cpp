@@ -12,7 +12,7 @@
 
 #include "meadow/capture/depth_source.h"
 #include "meadow/capture/error.h"
-#include "shared_data.h"
+#include "support/shared_data.h"
 
 namespace meadow::capture {
 namespace {

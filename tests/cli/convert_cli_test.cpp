@@ -12,7 +12,7 @@
 #include "cli_test_util.h"
 #include "meadow/capture/depth_source.h"
 #include "meadow/capture/recording.h"
-#include "shared_data.h"
+#include "support/shared_data.h"
 
 namespace fs = std::filesystem;
 using namespace meadow::capture;

@@ -10,7 +10,7 @@
 #include <nlohmann/json.hpp>
 
 #include "meadow/modeling/error.h"
-#include "test_util.h"
+#include "support/test_util.h"
 
 namespace fs = std::filesystem;
 using namespace meadow::modeling;

@@ -6,9 +6,9 @@
 #include <iostream>
 #include <opencv2/imgcodecs.hpp>
 
-#include "../../runtime/src/scene_gpu.h"
 #include "meadow/runtime/error.h"
 #include "meadow/runtime/scene.h"
+#include "scene_gpu.h"
 #include "scene_test_helpers.h"
 
 namespace meadow::runtime {

@@ -3,7 +3,7 @@
 
 #include <cstddef>
 
-#include "../../shaders/shared/blade_types.h"
+#include "shared/blade_types.h"
 
 namespace meadow::runtime::gpu {
 namespace {

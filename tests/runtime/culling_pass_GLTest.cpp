@@ -8,9 +8,9 @@
 #include <string>
 #include <vector>
 
-#include "../../runtime/src/culling_pass.h"
-#include "../../runtime/src/shader_sources.h"
+#include "culling_pass.h"
 #include "culling_test_scene.h"
+#include "shader_sources.h"
 
 namespace meadow::runtime {
 namespace {

@@ -5,8 +5,8 @@
 
 #include <type_traits>
 
-#include "../../runtime/src/gl/gl_object.h"
-#include "../../runtime/src/gl/shader_program.h"
+#include "gl/gl_object.h"
+#include "gl/shader_program.h"
 #include "meadow/runtime/error.h"
 
 namespace meadow::runtime {

@@ -1,5 +1,5 @@
 // Equal-size compact patches (Jahrmann & Wimmer 2017, Sec. 4).
-#include "../../runtime/src/patches.h"
+#include "patches.h"
 
 #include <gtest/gtest.h>
 

@@ -8,8 +8,8 @@
 #include <iostream>
 #include <vector>
 
-#include "../../runtime/src/physics_pass.h"
 #include "meadow/modeling/quadratic_bezier.h"
+#include "physics_pass.h"
 #include "physics_test_blades.h"
 
 namespace meadow::runtime {

@@ -8,7 +8,7 @@
 #include <random>
 #include <vector>
 
-#include "../../runtime/src/physics_reference.h"
+#include "physics_reference.h"
 
 namespace meadow::runtime::testing {
 

@@ -9,10 +9,10 @@
 #include <opencv2/core.hpp>
 #include <vector>
 
-#include "../../runtime/src/physics_scene_pass.h"
 #include "meadow/runtime/culling.h"
 #include "meadow/runtime/gl_context.h"
 #include "meadow/runtime/renderer.h"
+#include "physics_scene_pass.h"
 #include "scene_test_helpers.h"
 
 namespace meadow::runtime {

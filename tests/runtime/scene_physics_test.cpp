@@ -3,9 +3,9 @@
 // one clear line.
 #include <gtest/gtest.h>
 
-#include "../../runtime/src/physics_scene_pass.h"
 #include "meadow/runtime/error.h"
 #include "meadow/runtime/scene.h"
+#include "physics_scene_pass.h"
 #include "scene_test_helpers.h"
 
 namespace meadow::runtime {

@@ -1,14 +1,14 @@
 // Blade seeding on triangle meshes: area-weighted, deterministic, rest poses on the surface.
-#include "../../runtime/src/seeding.h"
+#include "seeding.h"
 
 #include <gtest/gtest.h>
 
 #include <glm/geometric.hpp>
 #include <map>
 
-#include "../../runtime/src/scene_gpu.h"
 #include "meadow/runtime/error.h"
 #include "meadow/runtime/scene.h"
+#include "scene_gpu.h"
 #include "scene_test_helpers.h"
 
 namespace meadow::runtime {

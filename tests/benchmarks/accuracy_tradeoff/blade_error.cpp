@@ -20,7 +20,7 @@ constexpr int kWidthComparisonSamples = 50;
 
 }  // namespace
 
-BladeError bladeError(const BladeFit& fit, const modeling::SyntheticBlade& truth) {
+BladeError bladeError(const BladeFit& fit, const synth::SyntheticBlade& truth) {
     const QuadraticBezier spine = truth.spineInCamera_m();
     const float trueHeight_m = spine.length();
     std::vector<glm::vec3> dense(kTruthSpineSamples + 1);

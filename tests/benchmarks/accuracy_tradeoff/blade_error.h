@@ -6,7 +6,7 @@
 
 #include "accuracy_tradeoff/scene.h"
 #include "meadow/modeling/blade_fit.h"
-#include "meadow/modeling/synthetic_tuft.h"
+#include "meadow/synth/synthetic_tuft.h"
 
 namespace meadow::bench {
 
@@ -21,7 +21,7 @@ struct BladeError {
     [[nodiscard]] float controlPointMean_mm() const { return (v0_mm + v1_mm + v2_mm) / 3.f; }
 };
 
-BladeError bladeError(const modeling::BladeFit& fit, const modeling::SyntheticBlade& truth);
+BladeError bladeError(const modeling::BladeFit& fit, const synth::SyntheticBlade& truth);
 
 // Fitted blades matched one-to-one to true blades by label IoU (>= kMatchIou); the rest counted.
 struct TuftScore {

@@ -7,7 +7,7 @@
 #include "accuracy_tradeoff/report.h"
 #include "accuracy_tradeoff/tables.h"
 #include "meadow/modeling/chain_simulation.h"
-#include "meadow/modeling/skeleton_refiner.h"
+#include "meadow/synth/refiner_comparison.h"
 
 namespace meadow::bench {
 namespace {
@@ -44,14 +44,14 @@ void fig12(const Fig12Input& input, const fs::path& out) {
     sim.gravity_mps2 = {0.f, -9.81f, 0.f};
     // Pooled over presets: compareRefiners averages uniformly over blades, so the blade-weighted
     // mean of the per-preset rows is the pooled row (without running every blade twice).
-    std::map<std::pair<int, RefinerKind>, modeling::RefinerComparisonRow> pooled;
+    std::map<std::pair<int, RefinerKind>, synth::RefinerComparisonRow> pooled;
     std::size_t pooledBlades = 0;
     std::ostringstream md;
     md << "| preset | blades | knots | movement similarity | random | mean | geometry only |\n"
           "|---|---|---|---|---|---|---|\n";
     const auto mdRows = [&](const std::string& label, std::size_t blades,
-                            const std::vector<modeling::RefinerComparisonRow>& rows,
-                            float modeling::RefinerComparisonRow::*metric) {
+                            const std::vector<synth::RefinerComparisonRow>& rows,
+                            float synth::RefinerComparisonRow::*metric) {
         for (int k : kFig12Knots) {
             if (k == kFig12Knots.front()) continue;  // nothing culled: 0 for every refiner
             std::map<RefinerKind, float> at;
@@ -71,12 +71,11 @@ void fig12(const Fig12Input& input, const fs::path& out) {
             sim.seed = seed++;
             frames.push_back(modeling::simulateChain(knots, sim));
         }
-        const auto rows =
-            modeling::compareRefiners(rest, frames, kFig12Knots, {}, kFig12RandomTrials);
+        const auto rows = synth::compareRefiners(rest, frames, kFig12Knots, {}, kFig12RandomTrials);
         const fs::path csv = out / ("fig12_" + preset + ".csv");
-        modeling::writeRefinerComparisonCsv(csv, rows);
+        synth::writeRefinerComparisonCsv(csv, rows);
         std::cout << "  wrote " << csv.string() << " (" << rest.size() << " blades)\n";
-        mdRows(preset, rest.size(), rows, &modeling::RefinerComparisonRow::refinedHausdorff_mm);
+        mdRows(preset, rest.size(), rows, &synth::RefinerComparisonRow::refinedHausdorff_mm);
         for (const auto& r : rows) {
             auto& p = pooled[{r.knots, r.refiner}];
             p.knots = r.knots;
@@ -92,7 +91,7 @@ void fig12(const Fig12Input& input, const fs::path& out) {
         std::cerr << "  no fitted skeletons: Fig. 12 skipped\n";
         return;
     }
-    std::vector<modeling::RefinerComparisonRow> rows;
+    std::vector<synth::RefinerComparisonRow> rows;
     for (auto& [key, r] : pooled) {
         const auto w = static_cast<float>(pooledBlades);
         r.refinedHausdorff_mm /= w;
@@ -111,9 +110,9 @@ void fig12(const Fig12Input& input, const fs::path& out) {
             << ',' << fixed(r.hausdorff_mm, 4) << ',' << fixed(r.maxDeviation_mm, 4) << '\n';
     writeText(out / "fig12_all.csv", csv.str());
     mdRows("all, refined Hausdorff", pooledBlades, rows,
-           &modeling::RefinerComparisonRow::refinedHausdorff_mm);
+           &synth::RefinerComparisonRow::refinedHausdorff_mm);
     mdRows("all, polyline Hausdorff", pooledBlades, rows,
-           &modeling::RefinerComparisonRow::hausdorff_mm);
+           &synth::RefinerComparisonRow::hausdorff_mm);
     writeText(out / "fig12.md", md.str());
     chart(out / "fig12_all.csv", out / "fig12.png",
           "Fan and Sheng Fig. 12 on captured skeletons (" + std::to_string(pooledBlades) +

@@ -7,9 +7,9 @@
 #include <stdexcept>
 
 #include "accuracy_tradeoff/report.h"
-#include "meadow/capture/simulated_sensor.h"
 #include "meadow/modeling/error.h"
-#include "meadow/modeling/synthesize.h"
+#include "meadow/synth/simulated_sensor.h"
+#include "meadow/synth/synthesize.h"
 
 namespace meadow::bench {
 namespace {
@@ -19,32 +19,32 @@ using capture::DepthFrame;
 using capture::Segmentation;
 using modeling::BladeFit;
 using modeling::CaptureOptions;
-using modeling::SyntheticTuft;
+using synth::SyntheticTuft;
 
 }  // namespace
 
 Scene renderScene(const std::string& presetName, float noise, std::uint64_t seed, float distance_m,
                   int frameCount) {
-    const modeling::SynthPreset* preset = modeling::findSynthPreset(presetName);
+    const synth::SynthPreset* preset = synth::findSynthPreset(presetName);
     if (!preset) throw std::invalid_argument("unknown preset " + presetName);
-    modeling::TuftParams params;
+    synth::TuftParams params;
     params.seed = seed;
     params.distance_m = distance_m;
-    modeling::TuftSpec spec = modeling::buildPresetSpec(*preset, params);
-    spec.wind.frameRate_hz = static_cast<float>(modeling::kSynthFrameRate_hz);
-    capture::NoiseModel model;
+    synth::TuftSpec spec = synth::buildPresetSpec(*preset, params);
+    spec.wind.frameRate_hz = static_cast<float>(synth::kSynthFrameRate_hz);
+    synth::NoiseModel model;
     model.scale = noise * preset->noiseMultiplier;
-    const capture::SimulatedSensor sensor(spec.camera.intrinsics, model);
+    const synth::SimulatedSensor sensor(spec.camera.intrinsics, model);
     Scene scene{presetName, noise, seed, spec.camera.distance_m, {}, {}, {}};
     for (int i = 0; i < frameCount; ++i) {
-        SyntheticTuft tuft = modeling::buildTuft(spec, i);
-        const capture::SimulatedFrame sim = sensor.render(
-            tuft.meshes(), modeling::synthFrameSeed(seed, static_cast<std::uint64_t>(i)));
+        SyntheticTuft tuft = synth::buildTuft(spec, i);
+        const synth::SimulatedFrame sim = sensor.render(
+            tuft.meshes(), synth::synthFrameSeed(seed, static_cast<std::uint64_t>(i)));
         DepthFrame frame;
         frame.depth_mm = sim.depth_mm;
         frame.intrinsics = spec.camera.intrinsics;
         frame.index = i;
-        frame.timestamp_s = i / modeling::kSynthFrameRate_hz;
+        frame.timestamp_s = i / synth::kSynthFrameRate_hz;
         scene.frames.push_back(std::move(frame));
         if (i == 0) {
             scene.labels = sim.labels;

@@ -11,7 +11,7 @@
 #include "meadow/capture/segmenter.h"
 #include "meadow/modeling/blade_fit.h"
 #include "meadow/modeling/capture_pipeline.h"
-#include "meadow/modeling/synthetic_tuft.h"
+#include "meadow/synth/synthetic_tuft.h"
 
 namespace meadow::bench {
 
@@ -21,8 +21,8 @@ struct Scene {
     std::uint64_t seed = 1;
     float distance_m = 0.f;
     std::vector<capture::DepthFrame> frames;
-    cv::Mat1w labels;              // truth of frame 0: blade id per pixel, 0 = none
-    modeling::SyntheticTuft tuft;  // frame 0
+    cv::Mat1w labels;           // truth of frame 0: blade id per pixel, 0 = none
+    synth::SyntheticTuft tuft;  // frame 0
 };
 
 // `frameCount` frames of the preset (distance 0: the preset's own), each with its own noise.

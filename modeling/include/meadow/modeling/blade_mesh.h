@@ -17,7 +17,6 @@
 #include <glm/vec3.hpp>
 #include <vector>
 
-#include "meadow/capture/mesh.h"
 #include "meadow/modeling/archetype.h"
 
 namespace meadow::modeling {
@@ -52,14 +51,5 @@ struct BladeMeshOptions {
 // The mesh moved by a rigid transform (rotation + translation): positions by the full matrix,
 // normals by its rotation part.
 [[nodiscard]] TriangleMesh transformed(const TriangleMesh& mesh, const glm::mat4& targetFromSource);
-
-// The blade-local mesh placed in camera space and labelled, ready for capture::SimulatedSensor.
-[[nodiscard]] capture::LabelledMesh placeBlade(const TriangleMesh& bladeLocal,
-                                               const glm::mat4& cameraFromBlade,
-                                               std::uint16_t label);
-[[nodiscard]] capture::LabelledMesh placeBlade(const Archetype& archetype,
-                                               const glm::mat4& cameraFromBlade,
-                                               std::uint16_t label,
-                                               const BladeMeshOptions& options = {});
 
 }  // namespace meadow::modeling

@@ -64,23 +64,4 @@ inline std::string toString(RefinerKind kind) { return std::string(kRefinerKindN
 std::vector<int> refine(RefinerKind kind, const std::vector<glm::vec3>& restKnots,
                         const KnotTrajectories& frames, int m, const RefinerParams& params = {});
 
-// One row of the Fig. 12 comparison: errors of a refiner at a knot count, averaged over blades
-// (and, for the random refiner, over `randomTrials` seeds).
-struct RefinerComparisonRow {
-    int knots = 0;
-    RefinerKind refiner = RefinerKind::MovementSimilarity;
-    float refinedHausdorff_mm = 0.f;  // Algorithm 2, mean over frames and blades
-    float hausdorff_mm = 0.f;         // symmetric polyline distance, worst frame, mean over blades
-    float maxDeviation_mm = 0.f;      // worst frame, mean over blades
-};
-// Runs every refiner at every knot count on each blade (rest knots + its trajectories).
-std::vector<RefinerComparisonRow> compareRefiners(
-    const std::vector<std::vector<glm::vec3>>& restKnots,
-    const std::vector<KnotTrajectories>& trajectories, const std::vector<int>& knotCounts,
-    const RefinerParams& params = {}, int randomTrials = 10);
-// CSV (header: knots,refiner,refined_hausdorff_mm,hausdorff_mm,max_deviation_mm), written
-// atomically. Throws meadow::Error naming the path when it cannot be written.
-void writeRefinerComparisonCsv(const std::filesystem::path& path,
-                               const std::vector<RefinerComparisonRow>& rows);
-
 }  // namespace meadow::modeling
