@@ -1,6 +1,5 @@
 // `meadow capture`: a depth source -> an archetype library (JSON, optionally .glb).
 #include <CLI/CLI.hpp>
-#include <cmath>
 #include <iostream>
 #include <memory>
 #include <sstream>
@@ -11,6 +10,7 @@
 #include "meadow/capture/depth_source.h"
 #include "meadow/modeling/archetype_glb.h"
 #include "meadow/modeling/capture_pipeline.h"
+#include "option_checks.h"
 #include "progress.h"
 #include "source_options.h"
 
@@ -108,130 +108,106 @@ void runCapture(CaptureArgs& args) {
 
 void addCaptureCommand(CLI::App& app) {
     // Options bound to the library's own fields show the library's defaults (capture_default_str)
-    // rather than a copy of them that could drift.
+    // rather than a copy of them that could drift. One line an option; the why is in
+    // docs/cli.md and docs/capture.md.
     auto args = std::make_shared<CaptureArgs>();
     CLI::App* cmd = app.add_subcommand(
         "capture",
-        "Cut the tuft seen by a depth source into single blades and model each as an archetype "
-        "(quadratic Bezier spine + width profile): writes an archetype library");
-    cmd->footer(
-        "Camera distance, measured on the simulated presets (README, \"Segmentation over camera "
-        "distance\"): leaf-like blades 6-25 mm wide segment well with the tuft 0.6-1.2 m away "
-        "(recall 0.80-1.00); grass blades 2-5 mm wide are found best close (recall 0.40-0.53 at "
-        "0.5 m, 0.24 at 0.8 m, 0 at 1.2 m). Aim the camera at the tuft from the side, its base in "
-        "view: a camera a few centimetres above the ground, looking along it, can leave the ground "
-        "unfitted. A still tuft is modelled better from more frames: record a dozen or more, and "
-        "each blade becomes one archetype fitted to its views from every group of --fuse frames "
-        "(README, \"One archetype per blade\"), and thin tips are followed through the readings "
-        "that recur over --recurring-frames frames. Each such run of frames is first tested for "
-        "motion: where the tuft moved (wind), its groups are segmented without the recurring "
-        "readings and each blade of each group is its own archetype (README, \"A tuft that "
-        "moves\").");
+        "Cut a plant seen by a depth source into single blades or leaves and fit each "
+        "as an archetype: writes an archetype library");
+    cmd->footer(R"(Examples:
+  meadow capture samples/recordings/quadratic-leaf --out lib.json --glb lib.glb
+  meadow capture tuft.oni --out lib.json --debug overlays/ --verbose
+  meadow capture pngs/ --intrinsics 525,525,319.5,239.5 --depth-unit 0.2mm --near 0.5 --far 1.1 --out lib.json
+
+Record a dozen frames or more of a still plant, seen from the side with its base in view.
+Reference: docs/cli.md (options), docs/capture.md (how it works, capturing your own plant).)");
+
+    const char* input = "Input";
     cmd->add_option("SOURCE", args->source,
-                    "Recording folder, plain folder of 16-bit PNGs (with --intrinsics and "
-                    "--depth-unit), .oni file, or openni:// for a live camera")
-        ->required();
-    cmd->add_option("--out", args->out, "Archetype library JSON to write")->required();
-    cmd->add_option("--glb", args->glb,
-                    "Also write the library as glTF 2.0 binary (one mesh per archetype)");
-    cmd->add_option("--debug", args->debug,
-                    "Folder for an overlay PNG per segmentation (mask, contour, cuts, blades)");
-    cmd->add_option("--fuse", args->options.fusionFrames,
-                    "Frames fused (--fusion) per segmentation, for a still tuft; 1 = each "
-                    "frame alone. Measured (median IoU, simulated presets): 1 frame 0.82, 2 0.81, "
-                    "3 0.85, 5 0.86; an even count has no middle reading (README, \"Fusing an "
-                    "even count\")")
-        ->capture_default_str()
-        ->check(CLI::Range(1, 64));
-    cmd->add_option("--fusion", args->fusion,
-                    "How --fuse frames become one: median (per pixel) or nearest-recurring (per "
-                    "pixel the nearest depth that 34 % of the frames read alike, else the "
-                    "median), which keeps thin blades and tips that the median hands to the "
-                    "wall. For thin grass record 12 frames or more and pass --fuse 12 --fusion "
-                    "nearest-recurring: measured on the simulated slim grass (0.6-1.0 m), tip "
-                    "RMS 74 -> 21 mm; on leaves capture's default groups keep their tips nearer "
-                    "(1.4-4.2 against 1.4-4.4 mm), though the masks are better (README, \"Fusing "
-                    "frames by recurring readings\")")
-        ->capture_default_str()
-        ->check(CLI::IsMember(capture::kFusionMethodNames.names()));
+                    "Recording folder, folder of 16-bit PNGs, .oni file, or openni:// (camera)")
+        ->required()
+        ->group(input);
+    addSourceOptions(*cmd, args->sourceArgs, input);
     cmd->add_option("--max-frames", args->options.maxFrames,
                     "Stop after this many frames (0 = all)")
         ->capture_default_str()
-        ->check(CLI::NonNegativeNumber);
-    cmd->add_option(
-           "--max-archetypes", args->options.maxArchetypes,
-           "Merge near-duplicate blades until at most this many archetypes remain (0 = keep all)")
+        ->check(CLI::NonNegativeNumber)
+        ->group(input);
+
+    const char* frames = "Frames";
+    cmd->add_option("--fuse", args->options.groups.fusionFrames,
+                    "Frames fused per segmentation (1 = each frame alone)")
         ->capture_default_str()
-        ->check(CLI::NonNegativeNumber);
-    cmd->add_option(
-           "--tolerance-mm", args->tolerance_mm,
-           "Model no more than this needs: the fewest width samples whose mean error is within "
-           "it, and the fewest refined knots (at most --knots) whose polyline stays within it in "
-           "every simulated frame (0 = always 16 samples and --knots knots)")
-        ->default_val(0.f)
-        ->check(CLI::Range(0.f, 100.f));
-    cmd->add_option("--knots", args->options.fit.refinedKnots,
-                    "Skeleton knots kept by the movement-similarity refiner, the most kept under "
-                    "--tolerance-mm (0 = no refining)")
+        ->check(CLI::Range(1, 64))
+        ->group(frames);
+    cmd->add_option("--fusion", args->fusion,
+                    "How fused frames become one: median or nearest-recurring")
         ->capture_default_str()
-        ->check(kRefinedKnotCount);
+        ->check(CLI::IsMember(capture::kFusionMethodNames.names()))
+        ->group(frames);
+    cmd->add_option("--recurring-frames", args->options.groups.recurringFrames,
+                    "Tips also follow readings that recur over this many frames (0 = off)")
+        ->capture_default_str()
+        ->check(CLI::Range(0, 64))
+        ->group(frames);
+    cmd->add_flag_callback(
+           "--assume-still", [args] { args->options.groups.checkMotion = false; },
+           "Take every run of frames for a still plant (no motion test)")
+        ->group(frames);
+
+    const char* segmentation = "Segmentation";
     cmd->add_option("--near", args->options.segmenter.nearDepth_m,
-                    "Near edge of the depth band in metres (0 with --far 0: automatic)")
-        ->capture_default_str()
-        ->check(CLI::Range(0.f, 20.f));
-    cmd->add_option("--far", args->options.segmenter.farDepth_m,
-                    "Far edge of the depth band in metres")
-        ->capture_default_str()
-        ->check(CLI::Range(0.f, 20.f));
+                    "Near edge of the depth band, m (with --far; neither = automatic)")
+        ->check(finiteRange(0.f, 20.f))
+        ->group(segmentation);
+    cmd->add_option("--far", args->options.segmenter.farDepth_m, "Far edge of the depth band, m")
+        ->check(finiteRange(0.f, 20.f))
+        ->group(segmentation);
     cmd->add_option("--plane", args->plane,
-                    "Ground/background plane removal: ransac (PCL SACSegmentation), "
-                    "organized-multi-plane (PCL OrganizedMultiPlaneSegmentation) or none")
+                    "Ground plane removal: " + capture::kPlaneMethodNames.list(", "))
         ->default_val(capture::toString(capture::SegmenterParams{}.planeMethod))
-        ->check(CLI::IsMember(capture::kPlaneMethodNames.names()));
+        ->check(CLI::IsMember(capture::kPlaneMethodNames.names()))
+        ->group(segmentation);
     cmd->add_option("--edge-smoothing", args->options.segmenter.edgeSmoothingSigma_px,
-                    "Sigma, in contour points, of the Gaussian that smooths the mask's ragged edge "
-                    "along its contour (0 = off; no point moves more than 1 px, tips and valleys "
-                    "between blades stay)")
+                    "Sigma (contour points) smoothing the mask's edge (0 = off)")
         ->capture_default_str()
-        ->check(CLI::Range(0.f, 20.f));
-    cmd->add_flag_callback(
-        "--per-group", [args] { args->options.tracks.enabled = false; },
-        "One archetype per blade and fused group, for a camera that moves between groups (runs "
-        "in which the tuft moved are found by a motion test and modelled so already). "
-        "By default a blade seen in several groups (its skeletons within " +
-            std::to_string(static_cast<int>(
-                std::lround(100.f * modeling::BladeTrackParams{}.maxDistanceFraction))) +
-            " % of its length of each other) is fitted once, to the mean of its skeletons, which "
-            "lies nearer the blade than any one of them (README, \"One archetype per blade\")");
-    cmd->add_option(
-           "--recurring-frames", args->options.recurringFrames,
-           "Tip trails also follow readings that recur (in " +
-               std::to_string(std::lround(100.f * capture::RecurringParams{}.minShare)) +
-               " % of the frames, at least " +
-               std::to_string(capture::RecurringParams{}.minFrames) + ", within " +
-               std::to_string(capture::RecurringParams{}.agreement_mm) +
-               " mm) over this many frames of a still tuft, where a thin tip is read a few "
-               "times in different pixels; 0 = each group's own readings only. A run in which "
-               "the tuft moved is segmented without them (--assume-still). Needs a recording "
-               "of at least this many frames (README, \"Tips from readings that recur over "
-               "frames\")")
+        ->check(finiteRange(0.f, 20.f))
+        ->group(segmentation);
+    cmd->add_flag("--keep-flagged", args->options.keepFlagged,
+                  "Also model blades flagged overlapping, curling, too thin, ...")
+        ->group(segmentation);
+
+    const char* modelling = "Modeling";
+    cmd->add_option("--knots", args->options.fit.refinedKnots,
+                    "Skeleton knots the refiner keeps at most (0 = no refining)")
         ->capture_default_str()
-        ->check(CLI::Range(0, 64));
+        ->check(kRefinedKnotCount)
+        ->group(modelling);
+    cmd->add_option("--tolerance-mm", args->tolerance_mm,
+                    "Keep the fewest width samples and knots within this error (0 = off)")
+        ->default_val(0.f)
+        ->check(finiteRange(0.f, 100.f))
+        ->group(modelling);
     cmd->add_flag_callback(
-        "--assume-still", [args] { args->options.checkMotion = false; },
-        "Take every run of --recurring-frames frames for a still tuft, without testing it for "
-        "motion (the test: readings changed " +
-            std::to_string(capture::MotionParams{}.farLag) +
-            " frames apart against 1 apart; a tuft that moves from " +
-            std::to_string(capture::MotionParams{}.movedRatio).substr(0, 3) + "x and " +
-            std::to_string(std::lround(100.0 * capture::MotionParams{}.minMovedShare)) +
-            " % of the readings more, still tufts measured 0.95-1.05x, wind 2.1-2.8x)");
-    cmd->add_flag(
-        "--keep-flagged", args->options.keepFlagged,
-        "Also model blades the segmenter flagged (overlapping, curling, too thin, base hidden)");
-    cmd->add_flag("--verbose", args->verbose,
-                  "List every skipped blade and empty frame with its reason");
-    addSourceOptions(*cmd, args->sourceArgs);
+           "--per-group", [args] { args->options.tracks.enabled = false; },
+           "One archetype per blade and group, not one per blade (a moving camera)")
+        ->group(modelling);
+    cmd->add_option("--max-archetypes", args->options.maxArchetypes,
+                    "Merge near-duplicates down to this many archetypes (0 = keep all)")
+        ->capture_default_str()
+        ->check(CLI::NonNegativeNumber)
+        ->group(modelling);
+
+    const char* output = "Output";
+    cmd->add_option("--out", args->out, "Archetype library JSON to write")
+        ->required()
+        ->group(output);
+    cmd->add_option("--glb", args->glb, "Also write the library as glTF 2.0 (.glb)")->group(output);
+    cmd->add_option("--debug", args->debug, "Folder for an overlay PNG per segmentation")
+        ->group(output);
+    cmd->add_flag("--verbose", args->verbose, "List every skipped blade with its reason")
+        ->group(output);
     cmd->callback([args] { runCapture(*args); });
 }
 

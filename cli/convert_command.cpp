@@ -152,9 +152,12 @@ void addConvertCommand(CLI::App& app) {
         ->add_option("OUTPUT", options->output,
                      "the .oni file to write, or the recording folder to write")
         ->required();
-    convert->footer(
-        "Outputs appear whole or not at all. Depth is kept bit for bit; intrinsics travel as "
-        "OpenNI2 fields of view (principal point at the image centre).");
+    convert->footer(R"(Examples:
+  meadow convert samples/recordings/quadratic-leaf tuft.oni
+  meadow convert tuft.oni rec/
+
+Outputs appear whole or not at all. Depth is kept bit for bit; intrinsics travel as OpenNI2
+fields of view (principal point at the image centre). Reference: docs/cli.md.)");
     convert->callback([options] { runConvert(*options); });
 }
 

@@ -11,6 +11,9 @@ int main(int argc, char** argv) {
     CLI::App app{"meadow: capture real grass with a depth camera and render meadows of it"};
     app.require_subcommand(1);
     app.set_version_flag("--version", "meadow 0.1.0");
+    // Wide enough for "--option TYPE:{choices}=default" and its text on one line: one line an
+    // option. Set before the verbs are added, which copy it.
+    app.get_formatter()->column_width(48);
     // One line per error, as for meadow's own errors (CLI11's default adds a second line).
     app.failure_message([](const CLI::App*, const CLI::Error& e) {
         return "meadow: " + std::string(e.what()) + "; see --help for the options\n";

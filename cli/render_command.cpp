@@ -93,19 +93,30 @@ void runRender(const RenderArgs& args) {
 void addRenderCommand(CLI::App& app) {
     auto args = std::make_shared<RenderArgs>();
     CLI::App* render = app.add_subcommand(
-        "render",
-        "Render a scene (meadow.scene JSON) to PNG frames and per-frame statistics (stats.csv)");
-    render->add_option("scene", args->scene, "Scene file (README, \"Scene format\")")->required();
-    render->add_option("--out", args->out, "Folder for frame_NNNNN.png and stats.csv (created)")
-        ->required();
+        "render", "Render a scene (meadow.scene JSON) to PNG frames and per-frame statistics");
+    render->footer(R"(Examples:
+  meadow render samples/scenes/meadow.json --out frames/ --frames 90
+  meadow render samples/scenes/meadow.json --library lib.json --out frames/ --size 1280x720
+
+Reference: docs/cli.md, docs/rendering.md; the scene format: docs/formats.md, "Scene".)");
+    const char* input = "Input";
+    render->add_option("SCENE", args->scene, "Scene file")->required()->group(input);
+    render
+        ->add_option("--library", args->library,
+                     "Archetype library to plant instead of the scene's archetypes")
+        ->group(input);
+    const char* output = "Output";
+    render->add_option("--out", args->out, "Folder for frame_NNNNN.png and stats.csv")
+        ->required()
+        ->group(output);
     render
         ->add_option("--frames", args->frames,
-                     "Number of frames (time advances 1 / render.frame_rate_hz each)")
-        ->check(CLI::Range(1, 1000000));
-    render->add_option("--size", args->size, "Image size WIDTHxHEIGHT, overrides render.size_px");
-    render->add_option("--library", args->library,
-                       "Archetype library (from `meadow capture`) to plant instead of the scene's "
-                       "archetypes, all equally likely");
+                     "Frames to render, 1 / render.frame_rate_hz apart in time")
+        ->capture_default_str()
+        ->check(CLI::Range(1, 1000000))
+        ->group(output);
+    render->add_option("--size", args->size, "Image size WIDTHxHEIGHT (default: the scene's)")
+        ->group(output);
     render->callback([args] { runRender(*args); });
 }
 

@@ -4,14 +4,16 @@
 
 namespace meadow::cli {
 
-void addSourceOptions(CLI::App& command, SourceArgs& args) {
-    command.add_option("--intrinsics", args.intrinsics,
-                       "fx,fy,cx,cy in pixels, for a plain PNG folder without recording.json "
-                       "(e.g. TUM RGB-D: 525,525,319.5,239.5)");
+void addSourceOptions(CLI::App& command, SourceArgs& args, const std::string& group) {
+    command
+        .add_option("--intrinsics", args.intrinsics,
+                    "fx,fy,cx,cy in pixels, for a PNG folder without recording.json")
+        ->group(group);
     command
         .add_option("--depth-unit", args.depthUnit,
-                    "Unit of the PNG values of a plain folder: mm, 0.2mm (TUM RGB-D) or m")
-        ->check(CLI::IsMember({"mm", "0.2mm", "m"}));
+                    "Unit of a PNG folder's values: " + capture::kDepthUnitNames.list(", "))
+        ->check(CLI::IsMember(capture::kDepthUnitNames.names()))
+        ->group(group);
 }
 
 capture::SourceOptions toSourceOptions(const SourceArgs& args) {

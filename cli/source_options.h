@@ -13,7 +13,7 @@ struct SourceArgs {
     std::string depthUnit;   // mm | 0.2mm | m
 };
 
-void addSourceOptions(CLI::App& command, SourceArgs& args);
+void addSourceOptions(CLI::App& command, SourceArgs& args, const std::string& group);
 // Throws meadow::Error with what to pass when the text is malformed.
 capture::SourceOptions toSourceOptions(const SourceArgs& args);
 

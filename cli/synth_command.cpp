@@ -5,8 +5,9 @@
 #include <string>
 
 #include "commands.h"
-#include "meadow/modeling/error.h"
+#include "meadow/synth/error.h"
 #include "meadow/synth/synthesize.h"
+#include "option_checks.h"
 #include "progress.h"
 
 namespace meadow::cli {
@@ -29,13 +30,13 @@ void runSynth(const SynthArgs& args) {
         return;
     }
     if (args.options.preset.empty() || args.out.empty())
-        throw modeling::ModelingError(
+        throw synth::SynthError(
             "synth needs --preset NAME and --out DIR (or --list to see the presets); known "
             "presets: " +
             synth::synthPresetNames());
     if (!synth::findSynthPreset(args.options.preset))
-        throw modeling::ModelingError("unknown preset '" + args.options.preset +
-                                      "'; known presets: " + synth::synthPresetNames());
+        throw synth::SynthError("unknown preset '" + args.options.preset +
+                                "'; known presets: " + synth::synthPresetNames());
     synth::SynthOptions options = args.options;
     options.out = args.out;
     Progress progress("synth " + options.preset, static_cast<std::size_t>(options.frames));
@@ -54,7 +55,13 @@ void addSynthCommand(CLI::App& app) {
     CLI::App* synth = app.add_subcommand(
         "synth",
         "Render a synthetic tuft of known blades through the simulated depth sensor: a "
-        "recording folder plus ground truth (truth/blades.json, truth/labels/*.png)");
+        "recording folder plus its ground truth");
+    synth->footer(R"(Examples:
+  meadow synth --list
+  meadow synth --preset quadratic-leaf --out rec/
+  meadow synth --preset wind --frames 30 --seed 7 --noise 0.5 --distance 1.0 --out rec/
+
+Reference: docs/cli.md; the truth format: docs/formats.md.)");
     synth->add_option("--preset", args->options.preset,
                       "Tuft to render; `meadow synth --list` shows them");
     synth->add_option("--out", args->out,
@@ -70,18 +77,16 @@ void addSynthCommand(CLI::App& app) {
         ->check(CLI::NonNegativeNumber);
     synth
         ->add_option("--noise", args->options.noiseScale,
-                     "Scale of the sensor noise: 0 = exact depth (still quantised), 1 = a "
-                     "Kinect v1; the noisy preset triples it")
+                     "Sensor noise scale: 0 = exact depth (still quantised), 1 = a Kinect v1")
         ->capture_default_str()
-        ->check(CLI::Range(0.0f, 10.0f));
+        ->check(finiteRange(0.0, 10.0));
     synth
         ->add_option("--distance", args->options.distance_m,
-                     "Camera distance to the tuft in metres (default: the preset's, "
-                     "0.7-1.0)")
-        ->check(CLI::Range(synth::kMinSynthDistance_m, synth::kMaxSynthDistance_m));
+                     "Camera distance to the tuft in metres (default: the preset's)")
+        ->check(finiteRange(synth::kMinSynthDistance_m, synth::kMaxSynthDistance_m));
     synth
         ->add_option("--blades", args->options.bladeCount,
-                     "Number of blades (default: the preset's, 4-9)")
+                     "Number of blades (default: the preset's)")
         ->check(CLI::Range(synth::kMinSynthBlades, synth::kMaxSynthBlades));
     synth->add_flag("--list", args->list, "List the presets, one a line, and exit");
     synth->callback([args]() { runSynth(*args); });

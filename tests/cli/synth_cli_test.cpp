@@ -130,6 +130,23 @@ TEST(MeadowCli, UsageErrorsAreOneLineExitingTwoAndHelpExitsZero) {
     }
 }
 
+TEST(MeadowCli, EveryVerbsHelpIsShortWithOneLineAnOptionAndExamples) {
+    constexpr int kMaxLines = 60;
+    constexpr std::size_t kMaxCharacters = 4000;
+    for (const std::string verb : {"synth", "capture", "convert", "render"}) {
+        const auto r = runMeadow(verb + " --help");
+        ASSERT_EQ(r.exitCode, 0) << verb << ": " << r.output;
+        EXPECT_LE(countLines(r.output), kMaxLines) << verb << ":\n" << r.output;
+        EXPECT_LE(r.output.size(), kMaxCharacters) << verb << ":\n" << r.output;
+        EXPECT_NE(r.output.find("Examples:\n  meadow " + verb), std::string::npos) << verb << ":\n"
+                                                                                   << r.output;
+        // No measured figures: the help points to the docs instead.
+        EXPECT_EQ(r.output.find("README"), std::string::npos) << verb << ":\n" << r.output;
+        EXPECT_EQ(r.output.find("Measured"), std::string::npos) << verb << ":\n" << r.output;
+        EXPECT_NE(r.output.find("docs/"), std::string::npos) << verb << ":\n" << r.output;
+    }
+}
+
 TEST(SynthCli, HelpExplainsEveryOptionAndItsDefault) {
     const auto r = runMeadow("synth --help");
     ASSERT_EQ(r.exitCode, 0) << r.output;

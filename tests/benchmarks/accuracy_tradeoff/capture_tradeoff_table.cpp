@@ -42,13 +42,13 @@ void captureTradeoff(const Plan& plan, const std::vector<Scene>& scenes, const f
     for (float sigma : kSmoothingSigmas_px) {
         SegmenterParams p = defaults.segmenter;
         p.smoothingSigma_px = sigma;
-        configs.push_back({"contour-sigma-px", fixed(sigma, 1), p, defaults.fusionFrames});
+        configs.push_back({"contour-sigma-px", fixed(sigma, 1), p, defaults.groups.fusionFrames});
     }
     for (PlaneMethod m :
          {PlaneMethod::None, PlaneMethod::Ransac, PlaneMethod::OrganizedMultiPlane}) {
         SegmenterParams p = defaults.segmenter;
         p.planeMethod = m;
-        configs.push_back({"plane-fit", capture::toString(m), p, defaults.fusionFrames});
+        configs.push_back({"plane-fit", capture::toString(m), p, defaults.groups.fusionFrames});
     }
     std::ostringstream csv, md;
     csv << "knob,value,time_ms,cpu_ms,median_iou,recall,precision\n";

@@ -45,7 +45,7 @@ void modelingAccuracy(const Plan& plan, const fs::path& out, Fig12Input& fig12) 
     std::cout << "modeling accuracy: " << plan.bladeTypes.size() << " presets x "
               << plan.noises.size() << " noise x " << plan.distances_m.size() << " distances x "
               << plan.modelingSeeds << " seeds (capture defaults: fuse "
-              << CaptureOptions{}.fusionFrames << " frames)\n";
+              << CaptureOptions{}.groups.fusionFrames << " frames)\n";
     const CaptureOptions options{};
     const capture::Segmenter segmenter(options.segmenter);
     const std::string header =
@@ -69,7 +69,7 @@ void modelingAccuracy(const Plan& plan, const fs::path& out, Fig12Input& fig12) 
                 int trueBlades = 0, fitted = 0, matched = 0, failures = 0;
                 for (int seed = 1; seed <= plan.modelingSeeds; ++seed) {
                     const Scene scene = renderScene(preset, noise, static_cast<std::uint64_t>(seed),
-                                                    distance_m, options.fusionFrames);
+                                                    distance_m, options.groups.fusionFrames);
                     const TuftCapture cap = captureTuft(segmenter, scene, options);
                     const TuftScore s = scoreCapture(scene, cap);
                     trueBlades += static_cast<int>(scene.tuft.blades.size());

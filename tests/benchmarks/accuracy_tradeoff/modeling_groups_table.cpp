@@ -10,85 +10,71 @@
 #include "accuracy_tradeoff/blade_error.h"
 #include "accuracy_tradeoff/report.h"
 #include "accuracy_tradeoff/tables.h"
-#include "meadow/modeling/blade_tracks.h"
-#include "meadow/modeling/error.h"
+#include "meadow/capture/group_segmenter.h"
+#include "meadow/modeling/blade_observations.h"
 
 namespace meadow::bench {
 namespace {
 
 namespace fs = std::filesystem;
 using modeling::BladeFit;
-using modeling::BladeObservation;
 using modeling::CaptureOptions;
 
 const std::vector<int> kGroupCounts{1, 2, 4, 8};
 
 struct TrackedFit {
     BladeFit fit;
-    int trueId = 0;  // the true blade most of the track's observations matched; 0: none
+    int trueId = 0;  // the true blade most of the track's views matched; 0: none
     int observations = 0;
 };
 
-// What capture sees of a scene's first `groups` fused groups: every trustworthy blade's skeleton
-// (segmentedBladeSkeleton) and the true blade it matches (IoU, as the other tables match).
+// What capture sees of a scene's first `groups` fused groups (capture::GroupSegmenter, then
+// modeling::observeGroup), and the true blade each view matches (IoU, as the other tables match).
 struct Observations {
-    std::vector<BladeObservation> observations;
-    std::vector<int> trueIds;
+    modeling::BladeObservations seen;
+    std::vector<int> trueIds;  // parallel to seen.views
 };
 
 Observations observe(const capture::Segmenter& segmenter, const Scene& scene,
                      const CaptureOptions& options, int groups) {
     Observations out;
-    const auto frames = static_cast<std::size_t>(options.fusionFrames);
-    const auto window = static_cast<std::size_t>(modeling::segmentationWindow(options));
-    const std::size_t read = static_cast<std::size_t>(groups) * frames;
-    capture::RecurringReadings tips;
-    for (int g = 0; g < groups; ++g) {
-        const std::size_t first = static_cast<std::size_t>(g) * frames;
-        // As captureArchetypes reads them: a window at a time, each window's groups with the
-        // readings recurring over its last `window` frames.
-        if (first % window == 0) {
-            const std::size_t end = std::min(read, first + window);
-            tips = modeling::recurringReadingsOfRun(
-                options, std::span(scene.frames)
-                             .subspan(end - std::min(end, window), std::min(end, window)));
-        }
-        const std::span<const capture::DepthFrame> group(scene.frames.data() + first, frames);
-        const capture::Segmentation seg = segmenter.segment(group, tips);
-        const BladeMatch match = matchBlades(scene.labels, seg.blades);
-        for (std::size_t b = 0; b < seg.blades.size(); ++b) {
-            const auto& flags = seg.blades[b].flags;
-            if (std::any_of(flags.begin(), flags.end(), modeling::disqualifiesFromModelling))
-                continue;
-            try {
-                out.observations.push_back(
-                    {g, modeling::segmentedBladeSkeleton(seg, b, group.front(), options.fit)});
-                out.trueIds.push_back(match.foundToTrueId[b]);
-            } catch (const modeling::ModelingError&) {
-            }
-        }
+    capture::GroupSegmenter grouper(segmenter, options.groups);
+    std::vector<capture::GroupSegmentation> segmented;
+    const auto keep = [&](std::vector<capture::GroupSegmentation> more) {
+        for (auto& g : more) segmented.push_back(std::move(g));
+    };
+    const auto read = static_cast<std::size_t>(groups * options.groups.fusionFrames);
+    for (std::size_t i = 0; i < read; ++i) keep(grouper.add(scene.frames[i]));
+    keep(grouper.finish());
+    modeling::CaptureSummary ignored;
+    for (const capture::GroupSegmentation& g : segmented) {
+        const std::size_t before = out.seen.views.size();
+        modeling::observeGroup(g, options, out.seen, ignored);
+        const BladeMatch match = matchBlades(scene.labels, g.segmentation.blades);
+        for (std::size_t v = before; v < out.seen.views.size(); ++v)
+            for (std::size_t b = 0; b < g.segmentation.blades.size(); ++b)
+                if (g.segmentation.blades[b].id == out.seen.views[v].sighting.bladeId)
+                    out.trueIds.push_back(match.foundToTrueId[b]);
     }
     return out;
 }
 
 // As modeling::captureArchetypes fits them: one archetype per track, to the mean of its
-// skeletons; with tracks.enabled false, one per observation (`--per-group`).
+// skeletons; with tracks.enabled false, one per view (`--per-group`).
 std::vector<TrackedFit> fitTracks(const Observations& seen, const CaptureOptions& options,
                                   const modeling::BladeTrackParams& tracks) {
+    CaptureOptions o = options;
+    o.tracks = tracks;
+    modeling::CaptureSummary ignored;
     std::vector<TrackedFit> out;
-    for (const auto& track : modeling::trackBlades(seen.observations, tracks)) {
+    for (modeling::TrackFit& fitted : modeling::fitTracks(
+             seen.seen, modeling::trackObservations(seen.seen, tracks), o, "", ignored)) {
         std::map<int, int> votes;
-        for (const std::size_t i : track) ++votes[seen.trueIds[i]];
-        int trueId = seen.trueIds[track.front()];
+        for (const std::size_t i : fitted.track) ++votes[seen.trueIds[i]];
+        int trueId = seen.trueIds[fitted.track.front()];
         for (const auto& [id, n] : votes)
             if (n > votes[trueId]) trueId = id;
-        try {
-            out.push_back(
-                {modeling::fitArchetype(modeling::trackSkeleton(seen.observations, track, tracks),
-                                        options.fit),
-                 trueId, static_cast<int>(track.size())});
-        } catch (const modeling::ModelingError&) {
-        }
+        out.push_back({std::move(fitted.fit), trueId, static_cast<int>(fitted.track.size())});
     }
     return out;
 }
@@ -131,7 +117,7 @@ void modelingOverGroups(const Plan& plan, const fs::path& out) {
     const capture::Segmenter segmenter(options.segmenter);
     std::cout << "modeling over fused groups: " << plan.bladeTypes.size() << " presets x "
               << plan.distances_m.size() << " distances x " << plan.modelingSeeds << " seeds, 1-"
-              << mostGroups << " groups of " << options.fusionFrames << " frames\n";
+              << mostGroups << " groups of " << options.groups.fusionFrames << " frames\n";
     std::ostringstream csv, md;
     csv << "preset,groups,frames,true_blades,mode,archetypes,archetypes_matched,"
            "observations_per_archetype,tip_rms_mm,tip_median_mm,height_error_abs_pct,"
@@ -148,7 +134,7 @@ void modelingOverGroups(const Plan& plan, const fs::path& out) {
             for (int seed = 1; seed <= plan.modelingSeeds; ++seed)
                 scenes.push_back(renderScene(preset, kNominalNoise,
                                              static_cast<std::uint64_t>(seed), distance_m,
-                                             mostGroups * options.fusionFrames));
+                                             mostGroups * options.groups.fusionFrames));
         for (const int groups : kGroupCounts) {
             Pooled single, tracked;
             int trueBlades = 0;
@@ -176,14 +162,14 @@ void modelingOverGroups(const Plan& plan, const fs::path& out) {
                  {std::pair<const char*, const Pooled*>{"per-group", &single},
                   {"one-per-blade", &tracked}}) {
                 const std::vector<std::string> c = p->cells();
-                csv << preset << ',' << groups << ',' << groups * options.fusionFrames << ','
+                csv << preset << ',' << groups << ',' << groups * options.groups.fusionFrames << ','
                     << trueBlades << ',' << mode << ',' << p->archetypes << ',' << p->errors.size()
                     << ',' << fixed(perArchetype(*p), 2) << ',' << c[0] << ',' << c[1] << ','
                     << c[2] << ',' << c[3] << ',' << fixed(tuftMs(*p), 1) << '\n';
             }
             const auto cell = [](const std::string& s) { return s.empty() ? std::string("–") : s; };
             const std::vector<std::string> a = single.cells(), b = tracked.cells();
-            md << "| " << preset << " | " << groups << " (" << groups * options.fusionFrames
+            md << "| " << preset << " | " << groups << " (" << groups * options.groups.fusionFrames
                << ") | " << single.archetypes << " (" << single.errors.size() << ") / "
                << tracked.archetypes << " (" << tracked.errors.size() << ") of " << trueBlades
                << " | " << cell(a[0]) << " (" << cell(a[1]) << ") / " << cell(b[0]) << " ("

@@ -39,7 +39,7 @@ void modelingTradeoff(const Plan& plan, const std::vector<Scene>& scenes, const 
     }
     for (int f : kModelingFusionFrames) {
         CaptureOptions o;
-        o.fusionFrames = f;
+        o.groups.fusionFrames = f;
         configs.push_back({"fusion-frames", std::to_string(f), o});
     }
     for (float tol : kTolerances_mm) {  // as `meadow capture --tolerance-mm`: widths and knots

@@ -7,7 +7,8 @@
 #include <stdexcept>
 
 #include "accuracy_tradeoff/report.h"
-#include "meadow/modeling/error.h"
+#include "meadow/capture/group_segmenter.h"
+#include "meadow/modeling/blade_observations.h"
 #include "meadow/synth/simulated_sensor.h"
 #include "meadow/synth/synthesize.h"
 
@@ -125,26 +126,27 @@ Segmentation segmentScene(const capture::Segmenter& segmenter, const Scene& scen
 
 TuftCapture captureTuft(const capture::Segmenter& segmenter, const Scene& scene,
                         const CaptureOptions& options) {
+    // One group of the scene's first frames, observed and fitted as `meadow capture` does.
+    capture::GroupSegmenter grouper(segmenter, options.groups);
+    for (int i = 0; i < options.groups.fusionFrames; ++i)
+        (void)grouper.add(scene.frames[static_cast<std::size_t>(i)]);
+    std::vector<capture::GroupSegmentation> groups = grouper.finish();
     TuftCapture out;
-    out.segmentation = segmentScene(segmenter, scene, options.fusionFrames);
-    const DepthFrame& depthFrame = scene.frames.front();  // capture fits on the group's first
-    for (std::size_t index = 0; index < out.segmentation.blades.size(); ++index) {
-        const BladeContour& blade = out.segmentation.blades[index];
-        const bool flagged = std::any_of(blade.flags.begin(), blade.flags.end(),
-                                         modeling::disqualifiesFromModelling);
-        if (flagged && !options.keepFlagged) {
-            out.fits.emplace_back();
-            continue;
-        }
-        try {
-            // Rooted at the cluster's base point, as `meadow capture` fits.
-            out.fits.emplace_back(
-                modeling::fitSegmentedBlade(out.segmentation, index, depthFrame, options.fit));
-        } catch (const modeling::ModelingError&) {
-            out.fits.emplace_back();
-            ++out.fitFailures;
-        }
+    out.segmentation = groups.front().segmentation;
+    modeling::BladeObservations seen;
+    modeling::CaptureSummary summary;
+    modeling::observeGroup(groups.front(), options, seen, summary);
+    modeling::BladeTrackParams perGroup = options.tracks;
+    perGroup.enabled = false;
+    out.fits.resize(out.segmentation.blades.size());
+    for (modeling::TrackFit& fitted : modeling::fitTracks(
+             seen, modeling::trackObservations(seen, perGroup), options, "", summary)) {
+        const int id = seen.views[fitted.track.front()].sighting.bladeId;
+        for (std::size_t b = 0; b < out.segmentation.blades.size(); ++b)
+            if (out.segmentation.blades[b].id == id) out.fits[b] = std::move(fitted.fit);
     }
+    for (const std::string& note : summary.notes)
+        out.fitFailures += note.find(" not modelled: ") != std::string::npos;
     return out;
 }
 

@@ -53,7 +53,7 @@ struct SegmentationTally {
 capture::Segmentation segmentScene(const capture::Segmenter& segmenter, const Scene& scene,
                                    int fusionFrames);
 
-// Mirrors modeling::captureArchetypes (capture_pipeline.cpp) for one fused group, keeping what
+// modeling::captureArchetypes for one fused group (its steps, one by one), keeping what
 // the library drops (the blade masks and camera-space spines) to compare with the truth.
 struct TuftCapture {
     capture::Segmentation segmentation;
