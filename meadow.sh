@@ -3,6 +3,7 @@
 #   ./meadow.sh demo   install what is missing, build, run the main job on the bundled sample
 #   ./meadow.sh test   install what is missing, build, run the whole test suite (CTest)
 #   ./meadow.sh asan   the same suite under AddressSanitizer + UBSan
+#   ./meadow.sh measure  regenerate every table in docs/measurements (--quick: a smoke run)
 #   ./meadow.sh build  install what is missing and build only
 #   ./meadow.sh deps   install what is missing, nothing else
 # Idempotent: packages already present are not touched; builds are incremental.
@@ -65,5 +66,6 @@ case "$cmd" in
   test)  install_missing; build default; ctest --preset default -j "$jobs" ;;
   asan)  install_missing; build asan; ctest --preset asan -j "$jobs" ;;
   demo)  install_missing; build default; shift; exec "$root/samples/demo.sh" "$root/build/default/cli/meadow" "$@" ;;
-  *) sed -n '2,8p' "$0"; [ "$cmd" = help ] || exit 2 ;;
+  measure) install_missing; build default; shift; exec "$root/tools/measure.sh" "$@" ;;
+  *) sed -n '2,9p' "$0"; [ "$cmd" = help ] || exit 2 ;;
 esac

@@ -46,6 +46,13 @@ Plan makePlan(bool quick) {
         plan.modelingSeeds = 1;
         plan.tradeoffSeeds = 1;
         plan.repetitions = 1;
+        plan.fusionFrames = {1, 3};
+        plan.fusionSeeds = 1;
+        plan.missedFrames = {1};
+        plan.ablationSeeds = 1;
+        plan.trackSeeds = 1;
+        plan.motionSeeds = 1;
+        plan.gentlerWinds = {0.f, 0.1f};
     }
     return plan;
 }
@@ -55,9 +62,10 @@ namespace {
 namespace fs = std::filesystem;
 
 // What --only can name.
-const std::vector<std::string> kTables{"segmentation-accuracy", "capture-tradeoff",
-                                       "modeling-tradeoff",     "modeling-accuracy",
-                                       "segmentation-distance", "modeling-groups"};
+const std::vector<std::string> kTables{
+    "segmentation-accuracy", "capture-tradeoff", "modeling-tradeoff",   "modeling-accuracy",
+    "segmentation-distance", "modeling-groups",  "segmentation-fusion", "segmentation-missed",
+    "segmentation-ablation", "tracks-fusion",    "tip-reach",           "motion-calibration"};
 
 int run(int argc, char** argv) {
     fs::path out = "docs/measurements";
@@ -71,13 +79,18 @@ int run(int argc, char** argv) {
             verbose = true;
         } else if (arg == "--out" && i + 1 < argc) {
             out = argv[++i];
+        } else if (arg == "--made" && i + 1 < argc) {
+            setMadeLine(argv[++i]);
         } else if (arg == "--only" && i + 1 < argc &&
                    std::find(kTables.begin(), kTables.end(), argv[i + 1]) != kTables.end()) {
             only = argv[++i];
         } else {
-            std::cerr << "usage: " << argv[0] << " [--out DIR] [--quick] [--verbose] [--only T]\n"
+            std::cerr << "usage: " << argv[0]
+                      << " [--out DIR] [--quick] [--verbose] [--only T] [--made TEXT]\n"
                       << "  --out DIR  where the CSV, MD and PNG files go (default "
                          "docs/measurements)\n"
+                      << "  --made TEXT  provenance line ending each Markdown table (commit, "
+                         "date, machine)\n"
                       << "  --quick    fewer presets, seeds and repetitions: a smoke run\n"
                       << "  --verbose  one line per fitted blade (modeling accuracy)\n"
                       << "  --only T   one table (its files alone are rewritten):";
@@ -125,7 +138,22 @@ int run(int argc, char** argv) {
         segmentationOverDistance(plan, out);
         ran();
     }
-    if (wanted("modeling-groups")) modelingOverGroups(plan, out);
+    if (wanted("modeling-groups")) {
+        modelingOverGroups(plan, out);
+        ran();
+    }
+    const std::vector<std::pair<const char*, void (*)(const Plan&, const fs::path&)>> more{
+        {"segmentation-fusion", segmentationOverFusion},
+        {"segmentation-missed", segmentationMissed},
+        {"segmentation-ablation", segmentationAblation},
+        {"tracks-fusion", tracksOverFusion},
+        {"tip-reach", tipReach},
+        {"motion-calibration", motionCalibration}};
+    for (const auto& [name, table] : more)
+        if (wanted(name)) {
+            table(plan, out);
+            ran();
+        }
     std::cout << "done in " << elapsed() << '\n';
     return 0;
 }

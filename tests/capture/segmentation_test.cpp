@@ -36,15 +36,6 @@ struct Match {
 
 constexpr double kMatchIou = 0.5;
 
-// MEADOW_SEGMENTATION_DEBUG=<folder> writes each checked frame's overlay there, for a look.
-void maybeWriteOverlay(const DepthFrame& frame, const Segmentation& s) {
-    const char* folder = std::getenv("MEADOW_SEGMENTATION_DEBUG");
-    if (!folder) return;
-    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    writeDebugOverlay(std::filesystem::path(folder) / (std::string(info->name()) + ".png"), frame,
-                      s);
-}
-
 Match match(const cv::Mat1w& labels, int bladeCount, const Segmentation& s) {
     Match m;
     m.truthCount = bladeCount;
@@ -71,7 +62,6 @@ Match match(const cv::Mat1w& labels, int bladeCount, const Segmentation& s) {
     f.depth_mm = labels * 4000;  // the truth as the overlay's grey image
     f.intrinsics.width_px = labels.cols;
     f.intrinsics.height_px = labels.rows;
-    maybeWriteOverlay(f, s);
     return m;
 }
 

@@ -14,8 +14,8 @@
 namespace meadow::test {
 
 // Scratch folders of this process, removed when it exits normally (a crash leaves them for a
-// look; so does MEADOW_KEEP_TEST_DIRS=1). Named by process, so every run would otherwise leave
-// its own set behind: a test machine gathered thousands.
+// look). Named by process, so every run would otherwise leave its own set behind: a test
+// machine gathered thousands.
 class ScratchFolders {
 public:
     static ScratchFolders& instance() {
@@ -26,7 +26,6 @@ public:
     ScratchFolders(const ScratchFolders&) = delete;
     ScratchFolders& operator=(const ScratchFolders&) = delete;
     ~ScratchFolders() {
-        if (std::getenv("MEADOW_KEEP_TEST_DIRS")) return;
         std::error_code ignored;  // a folder a test removed itself is fine
         for (const auto& dir : dirs_) std::filesystem::remove_all(dir, ignored);
     }

@@ -6,7 +6,6 @@
 
 namespace meadow::bench {
 
-inline constexpr double kMatchIou = 0.5;  // a found blade matches a true one at pixel IoU >= this
 inline const std::vector<std::string> kBladeTypePresets{"slim-grass", "quadratic-leaf",
                                                         "shrub-leaf", "bamboo-leaf", "sharp-tip"};
 inline const std::vector<float> kNoiseScales{0.f, 1.f, 2.f, 4.f};
@@ -28,6 +27,14 @@ struct Plan {
     int modelingSeeds = 2;
     int tradeoffSeeds = 2;
     int repetitions = 5;
+    // Fused frames of a still tuft, by median and by nearest recurring reading (1: no fusion).
+    std::vector<int> fusionFrames{1, 3, 5, 8, 12, 16};
+    int fusionSeeds = 10;  // segmentation_fusion and segmentation_missed
+    std::vector<int> missedFrames{1, 8, 12};
+    int ablationSeeds = 2;  // segmentation_ablation
+    int trackSeeds = 2;     // tracks_fusion and tip_reach, at distances_m
+    int motionSeeds = 3;    // motion_calibration
+    std::vector<float> gentlerWinds{0.f, 0.005f, 0.01f, 0.02f, 0.05f, 0.1f, 0.3f};
     bool verbose = false;  // one line per fitted blade in the modeling accuracy run
 };
 

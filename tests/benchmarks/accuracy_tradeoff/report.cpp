@@ -45,8 +45,18 @@ Timing timeMedian(int repetitions, const std::function<void()>& work) {
     return {median(wall), median(cpu)};
 }
 
+std::string& madeLine() {
+    static std::string made;
+    return made;
+}
+
+void setMadeLine(const std::string& made) { madeLine() = made; }
+
 void writeText(const fs::path& path, const std::string& text) {
-    writeFileAtomically(path, text);
+    if (path.extension() == ".md" && !madeLine().empty())
+        writeFileAtomically(path, text + "\nMade by `./meadow.sh measure`: " + madeLine() + ".\n");
+    else
+        writeFileAtomically(path, text);
     std::cout << "  wrote " << path.string() << '\n';
 }
 

@@ -45,7 +45,10 @@ struct Timing {
 };
 Timing timeMedian(int repetitions, const std::function<void()>& work);
 
+// Writes `text` atomically; a Markdown file ends with the provenance line, when one is set.
 void writeText(const std::filesystem::path& path, const std::string& text);
+// "commit 1a2b3c4 on 2026-12-03, 2 cores ...": which code made the tables, when, on what.
+void setMadeLine(const std::string& made);
 
 // A PNG of `y` against `x`, one line per value of column `series`, from `csv` (tools/chart.sh).
 void chart(const std::filesystem::path& csv, const std::filesystem::path& png,

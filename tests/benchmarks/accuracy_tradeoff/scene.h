@@ -11,19 +11,14 @@
 #include "meadow/capture/segmenter.h"
 #include "meadow/modeling/blade_fit.h"
 #include "meadow/modeling/capture_pipeline.h"
+#include "meadow/synth/blade_match.h"
+#include "meadow/synth/rendered_tuft.h"
 #include "meadow/synth/synthetic_tuft.h"
 
 namespace meadow::bench {
 
-struct Scene {
-    std::string preset;
-    float noise = 1.f;
-    std::uint64_t seed = 1;
-    float distance_m = 0.f;
-    std::vector<capture::DepthFrame> frames;
-    cv::Mat1w labels;           // truth of frame 0: blade id per pixel, 0 = none
-    synth::SyntheticTuft tuft;  // frame 0
-};
+// A preset rendered in memory as `meadow synth` renders it, with the truth of its first frame.
+using Scene = synth::RenderedTuft;
 
 // `frameCount` frames of the preset (distance 0: the preset's own), each with its own noise.
 Scene renderScene(const std::string& presetName, float noise, std::uint64_t seed, float distance_m,
@@ -31,15 +26,8 @@ Scene renderScene(const std::string& presetName, float noise, std::uint64_t seed
 // The blade-type presets at nominal noise, kMaxFusionFrames frames each: the trade-offs' scenes.
 std::vector<Scene> tradeoffScenes(const Plan& plan);
 
-struct BladeMatch {
-    std::vector<int> trueIds;         // labels visible in frame 0
-    std::vector<double> trueBestIou;  // per true id: IoU of its one-to-one partner (0 if none)
-    std::vector<int> foundToTrueId;   // per found blade: matched true id (IoU >= kMatchIou), or 0
-    int matched = 0;
-};
-// Greedy one-to-one matching by IoU over every (true, found) pair, highest IoU first (the same
-// rule as tests/modeling/segmentation_accuracy_test.cpp).
-BladeMatch matchBlades(const cv::Mat1w& labels, const std::vector<capture::BladeContour>& blades);
+using synth::BladeMatch;
+using synth::matchBlades;
 
 // Recall, precision and median IoU frame by frame, and the blade counts, over several frames.
 struct SegmentationTally {

@@ -1,5 +1,5 @@
 #pragma once
-// The accuracy / trade-off bench's seven tables, each written under `out` as CSV and Markdown
+// The accuracy / trade-off bench's thirteen tables, each written under `out` as CSV and Markdown
 // (and PNG charts where named): accuracy_tradeoff_bench.cpp runs them in this order.
 #include <filesystem>
 #include <glm/vec3.hpp>
@@ -52,5 +52,28 @@ void segmentationOverDistance(const Plan& plan, const std::filesystem::path& out
 // the mean of its skeletons across groups (blade_tracks.h), its tip, height and width errors and
 // the CPU per tuft.
 void modelingOverGroups(const Plan& plan, const std::filesystem::path& out);
+
+// 8. segmentation_fusion.csv/.md: blade-type preset x fused frames (median, nearest recurring):
+// recall and median IoU plain, with a perfect partition of the found mask and with a pixel's
+// tolerance.
+void segmentationOverFusion(const Plan& plan, const std::filesystem::path& out);
+
+// 9. segmentation_missed.csv/.md: what the sensor leaves of the blades segmentation misses (read
+// on under half, flush on a neighbour) and the recall bound that follows, per preset and frames.
+void segmentationMissed(const Plan& plan, const std::filesystem::path& out);
+
+// 10. segmentation_ablation.csv/.md: recall / median IoU with one sensor noise term off at a time.
+void segmentationAblation(const Plan& plan, const std::filesystem::path& out);
+
+// 11. tracks_fusion.csv/.md: tracked tip RMS from capture's 4 groups of 3 frames against one
+// segmentation of all 12 fused by their nearest recurring readings.
+void tracksOverFusion(const Plan& plan, const std::filesystem::path& out);
+
+// 12. tip_reach.csv/.md: how far the readings reach toward each true tip over 12 frames, and
+// where unextended tracked tips stop.
+void tipReach(const Plan& plan, const std::filesystem::path& out);
+
+// 13. motion_calibration.csv/.md: the motion test on every preset and on gentler winds.
+void motionCalibration(const Plan& plan, const std::filesystem::path& out);
 
 }  // namespace meadow::bench
