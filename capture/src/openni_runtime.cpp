@@ -58,8 +58,8 @@ std::shared_ptr<Runtime> Runtime::acquire() {
 }
 
 // OpenNI2 stays initialised until the process ends. Shutting it down and starting it again in
-// one process races with the threads of Debian's file driver (measured: the real-file round
-// trip test crashed in about 1 run of 5 that way, in none of 12 with OpenNI2 kept).
+// one process races with the threads of Debian's file driver: the real-file round-trip test
+// crashed now and then that way.
 Runtime::~Runtime() = default;
 
 std::string lastError() {

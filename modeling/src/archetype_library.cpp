@@ -43,7 +43,7 @@ ArchetypeLibrary parseArchetypeLibrary(const std::string& jsonText, const std::s
             case JsonError::Kind::Field:
                 break;
         }
-        throw ModelingError(where + e.what());
+        throw ModelingError(where + e.what() + "; fix that field or capture the library again");
     }
     return lib;
 }

@@ -24,7 +24,7 @@ using detail::sampleAt;
 constexpr float kBasePartFraction = 0.08f;
 // The segmented contour starts at the fork, where its two sides follow the crotch between
 // neighbouring blades: the matched widths over the lowest part of the chain overstate the blade's
-// width (measured up to 3x). The widths of the part just above it (kWidthReferenceFrom to
+// width, by up to several times. The widths of the part just above it (kWidthReferenceFrom to
 // kWidthReferenceTo of the chain, median) bound those of the lowest part (below
 // kWidthReferenceFrom), and the added piece carries that median. Every blade-type preset's true
 // width at its base is at most its width there.

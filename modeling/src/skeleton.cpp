@@ -22,8 +22,8 @@ constexpr float kEndTangentFraction = 0.08f;
 // Half window (contour points) of the moving average applied to each contour side before
 // resampling. The 8-connected chain of boundary pixels is a staircase whose length overstates
 // the true edge by up to 8 % depending on its orientation; where a side turns, that distortion
-// varies along it and arc-length pairing drifts (measured: +1.3 px width on a 14 px blade).
-// Averaging a few points puts the chain back on the edge line.
+// varies along it, arc-length pairing drifts and widths come out too large. Averaging a few
+// points puts the chain back on the edge line.
 constexpr int kSideSmoothingHalfWindow = 3;
 // Half window, as a fraction of the chain, of the central difference giving the midline's tangent.
 constexpr float kTangentHalfWindowFraction = 0.03f;
@@ -163,8 +163,8 @@ float extrapolateAccepted(const std::vector<float>& z, const std::vector<bool>& 
 // within maxJump_m of the line through the last accepted readings (kEndExtrapolationFraction of
 // the chain), extrapolated to it. A centred median cannot do this at the ends: its window turns
 // one-sided there, and at a thin tip most readings are flying pixels (depth between the blade and
-// the wall behind it), so the median is itself a flying pixel and the tip was lifted toward the
-// wall (end-to-end tip error ~100 mm RMS at nominal noise).
+// the wall behind it), so the median is itself a flying pixel and would lift the tip toward the
+// wall.
 //
 // Gaps between accepted readings are filled by linear interpolation along the chain; beyond the
 // outermost accepted reading by the same line extrapolated, so a blade tilted in depth keeps
@@ -315,7 +315,7 @@ Skeleton matchSymmetricContour(const capture::BladeContour& blade, const Skeleto
     for (int i = 0; i < n; ++i) s.midline_px[i] = 0.5f * (a[i] + b[i]);
     // Pairing by arc-length fraction drifts along the blade where curvature times width varies
     // (the inner side is shorter than the outer one locally, not uniformly), so a matched pair is
-    // not straight across: measured +1.2 px on a 14 px wide bent blade. The width is therefore the
+    // not straight across and its length overstates the width. The width is therefore the
     // pair's extent across the midline, |(b - a) . n| with n the midline's normal.
     const int h = std::max(
         1, static_cast<int>(std::lround(kTangentHalfWindowFraction * static_cast<float>(n - 1))));

@@ -13,7 +13,7 @@ namespace {
 // DT value d at the centre pixel of a blade w pixels wide (w odd) is (w + 1) / 2: centre pixel
 // to the first background pixel centre, so w = 2 d - 1 on the ridge. But the midline sits at an
 // arbitrary sub-pixel position and bilinear sampling of the DT's roof there loses about as much
-// (measured on synthetic blades: 2 d - 1 reads 0.5 to 1.2 px low, 2 d within +-0.5 px). So w ~ 2 d.
+// (on synthetic blades 2 d - 1 reads low and 2 d about right). So w ~ 2 d.
 constexpr float kCentreToBackground_px = 0.f;
 
 float bilinear(const cv::Mat1f& img, glm::vec2 p) {

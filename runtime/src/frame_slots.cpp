@@ -11,8 +11,8 @@ namespace meadow::runtime {
 namespace {
 
 constexpr double kMillisecondsPerNanosecond = 1e-6;
-// A frame still running after this long is a hung or lost device (llvmpipe renders 1 M blades
-// at 640 x 360 in ~1.4 s).
+// A frame still running after this long is a hung or lost device: far longer than even llvmpipe
+// takes for a million blades.
 constexpr GLuint64 kFrameTimeout_ns = 120'000'000'000ull;
 constexpr GLsizeiptr kCountersSize = sizeof(gpu::DrawCommandGpu) + sizeof(gpu::CullStatsGpu);
 

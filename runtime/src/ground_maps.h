@@ -1,5 +1,5 @@
 #pragma once
-// Images laid over the world's XZ plane (README "Scene format"): the density map
+// Images laid over the world's XZ plane (docs/formats.md#scene): the density map
 // (blades.density_map) and the archetype map (archetypes.map). Both use one coordinate mapping:
 // column 0 at min x, the last column at max x, row 0 at min z, the last row at max z, nearest
 // texel, points outside clamped to the border.

@@ -1,20 +1,11 @@
-// Accuracy against speed, measured against the simulated sensor's ground truth (design notes,
-// "Measuring"). Synthetic tufts (modeling/synthetic_tuft.h presets, rendered in memory through
-// synth::SimulatedSensor exactly as `meadow synth` does) go through the segmenter and the blade
-// fit; the result is compared with the exact truth. Writes, under --out (default
-// docs/measurements):
-//   segmentation_accuracy.csv/.md  preset x noise: recall, precision, median IoU, flags raised
-//   capture_tradeoff.csv/.md/.png  median IoU against segmentation time: fusion, sigma, plane fit
-//   modeling_accuracy.csv/.md      blade-type preset x noise x distance: spine / tip / height /
-//                                  width errors of the fitted archetypes
-//   modeling_tradeoff.csv/.md/.png spine error against capture time per tuft: refined knots,
-//                                  fusion frames, tolerance (+ _knots/_width charts)
-//   fig12_<preset>.csv, fig12_all.csv, fig12.md, fig12.png  Fan & Sheng 2017 Fig. 12 on the
-//                                  skeletons the fit extracted from each preset
-//   segmentation_distance.csv/.md/.png  blade-type preset x camera distance: recall,
-//                                  precision, median IoU at nominal noise
+// Accuracy against speed, measured against the simulated sensor's ground truth
+// (docs/testing.md#measurements). Synthetic tufts (synth/synthetic_tuft.h presets, rendered in
+// memory through synth::SimulatedSensor exactly as `meadow synth` does) go through the segmenter
+// and the blade fit; the result is compared with the exact truth. Writes, under --out (default
+// docs/measurements), the tables listed in accuracy_tradeoff/tables.h.
 // Charts are drawn by tools/chart.sh (gnuplot). Times are wall time (std::chrono::steady_clock),
 // median over repetitions, one thread; the thread's CPU time is written beside it because the
+// wall time of the same work varies on a shared, loaded machine.
 #include <algorithm>
 #include <chrono>
 #include <cstdlib>

@@ -62,7 +62,7 @@ TEST(DepthBand, ATuftBesideAWallsDepthsIsFoundOnceTheWallsStripesAreLeftOut) {
 
 TEST(DepthBand, WithoutARemovedGroundTheWallsStripesStay) {
     // Without a plane fit the ground at the tuft's own depths would fill such bins as well, so
-    // the second look is not taken: no band, as before.
+    // the second look is not taken: no band.
     const cv::Mat1w depth = wallBehindTuft();
     StageReport report;
     const segmentation::DepthBand band = segmentation::automaticDepthBand(
@@ -87,7 +87,7 @@ TEST(DepthBand, ATuftClearOfTheWallIsFoundAtOnce) {
 // A tuft seen from close up: blades fanning from one base point over three quarters of the
 // columns (between an eighth and seven eighths of the width), in front of the wall's stripes.
 // It spans more columns than kSceneryColumnCoverage, but it does not reach across the frame as
-// the wall does, so it is the tuft (slim grass at 0.6 m was skipped as scenery this way).
+// the wall does, so it is the tuft (as slim grass seen from 0.6 m is).
 TEST(DepthBand, ATuftSeenFromCloseUpIsNotTakenForScenery) {
     cv::Mat1w depth = wallBehindTuft();
     depth(kTuft).setTo(0);

@@ -25,7 +25,7 @@ TEST(FrameMemory, AFreedFrameBufferIsReusedWithoutPageFaults) {
 #else
     ASSERT_TRUE(keepFrameBuffersResident()) << "glibc refused the settings";
     // A 640 x 480 x 4-byte buffer: 300 pages. With glibc's defaults (such a buffer mapped on
-    // its own, or the heap's top trimmed after it is freed) these rounds measured 300 faults.
+    // its own, or the heap's top trimmed after it is freed) these rounds fault on every page.
     constexpr std::size_t kBytes = 640 * 480 * 4;
     constexpr int kRounds = 10;
     {
@@ -40,7 +40,7 @@ TEST(FrameMemory, AFreedFrameBufferIsReusedWithoutPageFaults) {
     const long faults = minorFaults() - before;
     std::cout << "  " << faults << " page faults over " << kRounds << " rounds of " << kBytes
               << " bytes\n";
-    EXPECT_LT(faults, 30);  // measured 0
+    EXPECT_LT(faults, 30);  // a tenth of one round's pages
 #endif
 }
 

@@ -79,7 +79,7 @@ TEST(Segmenter, FindsEveryBladeOfADrawnFanOverGroundAndWall) {
     const Match m = match(drawn.labels, drawn.bladeCount, s);
     EXPECT_EQ(m.recall(), 1.0) << describe(m, s);
     EXPECT_EQ(m.precision(), 1.0) << describe(m, s);
-    // Measured 0.79: the shared base, where blades occlude each other, is split by nearest
+    // Not higher: the shared base, where blades occlude each other, is split by nearest
     // contour piece, not by which blade is in front.
     EXPECT_GE(m.medianIou(), 0.75) << describe(m, s);
 }
@@ -121,11 +121,11 @@ TEST(Segmenter, KeepsRecallUnderDepthNoiseDropoutsAndFlyingPixels) {
     const Match m = match(drawn.labels, drawn.bladeCount, s);
     EXPECT_GE(m.recall(), 0.95) << describe(m, s);
     EXPECT_GE(m.precision(), 0.85) << describe(m, s);
-    // Measured 0.64 (0.76 with BladeMaskMethod::NearestContour): on this wide drawn fan the
-    // wedges through the base point cut the overlapping bases worse, while on every simulated
-    // preset they cut them better (segmentation_accuracy_test, README). The drawn jitter moves
-    // the polygon's vertices in the labels too, so here a ragged edge is the truth and smoothing
-    // it costs IoU (0.69 unsmoothed, 0.68 with a blurred mask edge).
+    // A lower floor: on this wide drawn fan the wedges through the base point cut the
+    // overlapping bases worse than BladeMaskMethod::NearestContour, while on every simulated
+    // preset they cut them better (docs/capture.md#partition-and-fork-zone). The drawn jitter
+    // moves the polygon's vertices in the labels too, so here a ragged edge is the truth and
+    // smoothing it costs IoU.
     EXPECT_GE(m.medianIou(), 0.62) << describe(m, s);
 }
 
@@ -207,11 +207,10 @@ TEST(Segmenter, StatisticalOutlierRemovalAlsoKeepsEveryBlade) {
 }
 
 // The paper's reference, the contour's centre, cuts between every two blades of a fan; its
-// pieces are worse than the base point's (README: reference point). The centre lies mid-fan,
-// so the two lobes of the base's bottom edge are also distance maxima: two extra pieces, whose
-// wedges take the lower part of their neighbours. Which of those neighbours keep IoU >= 0.5
-// turns on a handful of base pixels (recall 0.8 with a blurred mask edge, 0.6 with the edge
-// smoothed along the contour, 5 of 4,065 pixels apart), so every tip is checked as well.
+// pieces are worse than the base point's (docs/capture.md#partition-and-fork-zone). The centre lies
+// mid-fan, so the two lobes of the base's bottom edge are also distance maxima: two extra pieces,
+// whose wedges take the lower part of their neighbours. Which of those neighbours keep IoU >= 0.5
+// turns on a handful of base pixels, so every tip is checked as well.
 TEST(Segmenter, ContourCentreReferenceAlsoPartitionsAFan) {
     const auto scene = drawn::fan(5);
     const auto drawn = drawn::draw(scene);
@@ -244,7 +243,7 @@ TEST(Segmenter, TemporalFusionRecoversFromPerFrameDropouts) {
     const Segmentation fused = Segmenter().segment(std::span<const DepthFrame>(frames));
     const Match m = match(truth.labels, truth.bladeCount, fused);
     EXPECT_EQ(m.recall(), 1.0) << describe(m, fused);
-    EXPECT_GE(m.medianIou(), 0.7) << describe(m, fused);  // measured 0.74
+    EXPECT_GE(m.medianIou(), 0.7) << describe(m, fused);  // a floor with margin
     EXPECT_EQ(fused.report.front().stage, "temporal fusion");
 }
 

@@ -112,7 +112,8 @@ TEST(SensedExtent, AClusterReachingTheBottomBandHasItsBaseHidden) {
 }
 
 // The real recording (a room, no plants): its nearest depth mode is a door edge at the left,
-// which runs into the sensor's 33-45 px band of no readings. It was modelled as a blade.
+// which runs into the sensor's 33-45 px band of no readings. Unflagged, it would be modelled as
+// a blade.
 TEST(SensedExtent, TheDoorEdgeOfTheRealRecordingIsTruncated) {
     if (!fs::exists(kRealOni)) GTEST_SKIP() << "shared data absent: " << kRealOni;
     auto source = openDepthSource(kRealOni.string());

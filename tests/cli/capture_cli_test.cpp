@@ -70,9 +70,9 @@ TEST(CaptureCli, ToleranceKeepsFewerKnotsAndWidthSamples) {
     }
 }
 
-// On this single frame RANSAC once took the tuft's own fan (leaning ~42 deg toward the camera)
-// for the ground, removed the tuft's base and left 6 blade pieces cut at mid-height from 5
-// blades. A plane with the back wall beneath it is no longer taken for the ground.
+// On this single frame a plane through the tuft's own fan, leaning toward the camera, can pass
+// for the ground; taken, it removes the tuft's base and cuts the blades at mid-height. A plane
+// with the back wall beneath it is not the ground (docs/capture.md#plane-removal).
 TEST(CaptureCli, APlaneThroughTheTuftIsNotRemovedAsGround) {
     const fs::path dir = freshTempDir("capture_fan_plane");
     const fs::path rec = synthesised(dir, "--preset quadratic-leaf --seed 1 --frames 1");
@@ -104,7 +104,7 @@ TEST(CaptureCli, AllZeroFramesSayNoBladesAndKeepThePreviousLibrary) {
 }
 
 // A long recording with nothing to model: the message counts instead of listing every frame
-// (it once joined every note, a line that grew with the recording).
+// (joining every note would give a line that grows with the recording).
 TEST(CaptureCli, ManyEmptyFramesGiveOneBoundedLine) {
     const fs::path dir = freshTempDir("capture_many_empty");
     const fs::path rec = writeAllZeroRecording(dir / "rec", 30);
@@ -146,7 +146,7 @@ TEST(CaptureCli, BladesTooThinToModelSayHowToGetThem) {
 }
 
 // A capture that models some blades and skips others says what the skipped ones were flagged
-// as (slim grass at 0.6 m, seed 1: 2 of 12 modelled, the rest too thin or overlapping).
+// as (slim grass at 0.6 m: a few modelled, the rest too thin or overlapping).
 TEST(CaptureCli, SkippedBladesAreCountedByFlagAfterACapture) {
     const fs::path dir = freshTempDir("capture_skipped");
     const fs::path rec = synthesised(dir, "--preset slim-grass --distance 0.6 --frames 1");
@@ -171,8 +171,8 @@ TEST(CaptureCli, CorruptFrameNamesTheFile) {
     EXPECT_NE(r.output.find("000001.png"), std::string::npos) << r.output;
 }
 
-// Algorithm 1 keeps at least the two ends; --knots 1 was an "internal error" (exit 3) from deep
-// in the refiner after the whole segmentation.
+// Algorithm 1 keeps at least the two ends; --knots 1 is refused up front, not as an internal
+// error from deep in the refiner after the whole segmentation.
 TEST(CaptureCli, OneKnotIsAUsageErrorNamingTheOption) {
     const fs::path dir = freshTempDir("capture_one_knot");
     const auto r = runMeadow("capture " + (dir / "rec").string() + " --knots 1 --out " +

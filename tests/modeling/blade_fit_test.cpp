@@ -90,7 +90,7 @@ TEST(BladeFit, AFittedTipAveragesAnOffsetLastPointThatAFixedTipTakesWhole) {
     // across it, on an otherwise exact sampling.
     const auto [fixed, free] = fitsWithOffsetEnd(true, {0.f, 0.f, 0.002f});
     EXPECT_NEAR(glm::distance(fixed.spine_m.v2, kCurve.v2), 0.002f, 1e-6f);
-    // Measured 0.37 mm: the other 40 points hold the curve, and v1 and v2 share the pull.
+    // Well under the offset: the other 40 points hold the curve, and v1 and v2 share the pull.
     EXPECT_LT(glm::distance(free.spine_m.v2, kCurve.v2), 0.0006f);
     EXPECT_LT(free.rms_m, fixed.rms_m);
 }
@@ -100,7 +100,7 @@ TEST(BladeFit, AFittedRootAveragesAnOffsetFirstPoint) {
     // millimetres from it. Here it is 3 mm off, sideways, on an otherwise exact sampling.
     const auto [pinned, fitted] = fitsWithOffsetEnd(false, {0.003f, 0.f, 0.f});
     EXPECT_NEAR(glm::distance(pinned.spine_m.v0, kCurve.v0), 0.003f, 1e-6f);
-    // Measured 1.05 mm: with both ends free the curve gives the offset point a third of it.
+    // With both ends free the curve gives the offset point about a third of it.
     EXPECT_LT(glm::distance(fitted.spine_m.v0, kCurve.v0), 0.0015f);
     EXPECT_LT(glm::distance(fitted.spine_m.v2, kCurve.v2), 0.0005f);
     EXPECT_LT(fitted.rms_m, pinned.rms_m);
@@ -287,7 +287,7 @@ TEST(BladeFit, KnotToleranceKeepsTheFewestKnotsThatStayWithinIt) {
         }
         return k.size();
     };
-    // Measured: 8 mm 8 knots, 4 mm 10, 2 mm 20, 1 mm 60, 0.5 mm 64 (the cap).
+    // The tighter the tolerance, the more knots, up to the cap of 64.
     const std::size_t loose = knotsWithin(8e-3f), tight = knotsWithin(2e-3f);
     EXPECT_GE(loose, 3u) << "a bent blade needs more than its two ends at 8 mm";
     EXPECT_LT(loose, tight);

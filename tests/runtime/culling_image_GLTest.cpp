@@ -20,9 +20,8 @@ namespace {
 constexpr int kColourStep = 24;
 // Bounds: at most 0.5 % of the pixels change by more than kColourStep (scattered single pixels),
 // and the grass coverage moves by at most 2 % of itself (thin grass is ~15 % of this image, so
-// the README's "2 % absolute" would let a seventh of the grass go). With the paper's
-// orientation threshold 0.9 and distance culling from 5 m (d_max 40 m, 8 levels) this view lost
-// 2.3 % of its pixels and 8.5 % of its grass coverage: a visibly thinner meadow.
+// 2 % of the image would let a seventh of the grass go). The paper's orientation threshold 0.9
+// with distance culling from 5 m breaks both on this view: a visibly thinner meadow.
 constexpr double kMaxPixelsDiffering = 0.005;
 constexpr double kMaxRelativeCoverageChange = 0.02;
 

@@ -277,7 +277,7 @@ TEST(PhysicsReference, TenThousandStormFramesKeepBladesFiniteAboveGroundAtLength
 }
 
 // Why the exact length is the default: under the same storm the paper's Eq. (13) estimate lets
-// the curve length wander by several percent (6 % measured on 256 blades over 3000 frames).
+// the curve length wander by several percent.
 TEST(PhysicsReference, PaperLengthEstimateKeepsLengthOnlyWithinTenPercentUnderTheStorm) {
     testing::TestMeadow m = makeTestMeadow(64, 6);
     PhysicsSettings paper = testing::stormSettings();

@@ -13,7 +13,7 @@
 namespace meadow::runtime::test {
 
 // Private to this process: ctest runs each test in its own process, several at once, and a
-// folder shared by name was removed under a test that was still reading it.
+// folder shared by name could be removed under a test still reading it.
 inline std::filesystem::path freshTestDirectory(const std::string& name) {
     return meadow::test::freshTempDir("runtime_test_" + name);
 }

@@ -1,8 +1,8 @@
 // Edge smoothing along the contour. Lateral sensor noise moves each edge pixel on its own by
 // ~0.8 px, so the mask's edge is a blade's true edge plus independent per-pixel jitter. A blur
 // of the mask averages only a pixel's 2-3 edge neighbours; a blade's edge is smooth over tens
-// of pixels, so averaging the contour's points along its length estimates it better (leaf
-// presets at nominal noise, 2 seeds: median IoU +0.01-0.03 over the blur, see the README).
+// of pixels, so averaging the contour's points along its length estimates it better
+// (see docs/capture.md#clean-up-and-edge-smoothing).
 // Four guards keep what is not jitter:
 // - no point moves more than maxShift_px (the jitter is about a pixel);
 // - a neighbour counts in a point's average only as far as it runs the same way, so the two
@@ -29,8 +29,7 @@ constexpr int kTangentSpan = 3;
 constexpr int kTangentSharpness = 4;
 // Below this share of its Gaussian weight left, a point is at a corner and is not moved.
 // Chosen on the leaf presets without noise, where an exact mask should come back as it was:
-// 0.5 and 0.7 alike (median IoU within 0.02 of the unsmoothed mask), 0 rounded tips and
-// valleys off (up to 0.02 lower than 0.5).
+// without the threshold tips and valleys are rounded off.
 constexpr float kMinWeightShare = 0.5f;
 
 float power(float x, int n) {

@@ -18,17 +18,16 @@ constexpr int kSmoothHalfWidth_bins = 2;
 constexpr float kMaxHistogramDepth_m = 12.0f;
 // A depth mode present in more than this share of the image columns is scenery seen edge-on
 // (ground, a wall), not a tuft, when it also reaches across the frame or lies in stripes across
-// it. Coverage alone is not enough: a tuft seen from close up spans as many columns (slim grass
-// at 0.6 m: 62-79 %), but it stays off the side borders and fills a few percent of each row,
-// while ground and wall stripes reach both borders or, where the ground ends inside the view
-// (a ground disc seen beyond the tuft), fill a third of the rows they lie in and more.
+// it. Coverage alone is not enough: a tuft seen from close up spans as many columns, but it
+// stays off the side borders and fills a few percent of each row, while ground and wall stripes
+// reach both borders or, where the ground ends inside the view (a ground disc seen beyond the
+// tuft), fill a third of the rows they lie in and more.
 constexpr float kSceneryColumnCoverage = 0.6f;
 // How near each side border a mode's pixels must come to reach across the frame.
 constexpr float kSceneryBorderMargin = 0.05f;
 // A stripe: a row the mode fills across this share of the columns; the mode is scenery when this
-// share of its pixels lie in stripes. Measured: tufts 0 % on every blade-type preset at 0.5-1.0 m
-// (their rows hold a few blades), the far edge of the ground disc beyond slim grass 49 % (the
-// blades at its depths are in the mode too).
+// share of its pixels lie in stripes. A tuft's rows hold a few blades and lie in no stripe; the
+// far edge of a ground disc does, though the blades at its depths share its mode.
 constexpr float kStripeRowFill = 0.3f;
 constexpr double kSceneryStripeShare = 0.1;
 // Valleys above this share of the mode's peak are crossed (between blades of one tuft).
@@ -282,12 +281,11 @@ DepthBand automaticDepthBand(const cv::Mat1w& depth_mm, const cv::Mat1b& mask,
     if (band.found || !groundRemoved) return band;
     // Every mode was scenery. A tuft can share one with a wall or the ground behind it: the
     // smoothing bleeds the scenery's mass into the tuft's depths, and the merged mode is skipped
-    // whole (the tilted preset at nominal noise: the wall begins 1 cm beyond the farthest blade,
-    // and no blades were found). So look again without the bins that alone reach across the
+    // whole and no blades are found. So look again without the bins that alone reach across the
     // frame, and keep the band from growing into their pixels. Only then, and only where a
     // ground plane was removed: otherwise the ground at the tuft's own depths fills those bins
-    // too, leaving them out loses the tuft, and what is left of the ground passes for one
-    // (slim grass without a plane fit, 3 fused frames: no blades became 5 pieces of ground).
+    // too, leaving them out loses the tuft, and what is left of the ground passes for blades
+    // (see docs/capture.md#depth-band).
     const std::vector<std::uint8_t> scenery = sceneryBins(depth_mm, mask, h);
     const auto sceneryCount = std::count(scenery.begin(), scenery.end(), 1);
     if (sceneryCount == 0) return band;

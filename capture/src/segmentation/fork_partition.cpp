@@ -2,9 +2,8 @@
 // where the blades of a side-viewed tuft overlap on their way down to a shared base. The wedge
 // split (blade_partition.cpp) draws each boundary there as a straight line from a valley to the
 // base point, but a blade in front covers its neighbours' lower parts, and where one lies along
-// another the valley sits far above the base: whole strips go to the wrong blade. (Measured on
-// the leaf presets at nominal noise: giving every pixel of the mask to its true blade would lift
-// the median IoU by 0.05-0.11, doing so in this zone alone by 0.03-0.10.)
+// another the valley sits far above the base: whole strips go to the wrong blade
+// (docs/measurements/segmentation_fusion.md gives what a perfect partition would reach).
 //
 // Each blade's centre line, taken from its own part above the valleys, is continued down to the
 // base point along a quadratic that leaves along the blade's own direction, with the width it has
@@ -45,11 +44,10 @@ constexpr float kSegmentHalfWidths = 4.f;
 constexpr size_t kMaxSegmentSamples = 64;
 // Narrower blades (half width at their lowest visible point, px) keep their wedge and take no
 // zone pixels: on a 2-4 px blade one pixel of centre-line error is a whole half width, and
-// slim grass at noise 0 lost recall to its neighbours (0.69 -> 0.64) before this.
+// slim grass would lose pixels to its neighbours.
 constexpr float kMinHalfWidth_px = 2.f;
 // Nor do pieces over this many times the cluster's median width: not blades but ground or wall
-// a user's depth band kept (the benchmark's ground strips: 30 px half widths beside 3-4 px
-// blades).
+// a user's depth band kept (such as the benchmark's ground strips beside its blades).
 constexpr float kMaxWidthOverMedian = 3.f;
 
 // The element at size / 2 once sorted (the median of an odd count), reordering `values`.
@@ -109,7 +107,7 @@ std::vector<CentreSample> continuedCentreLine(const BladeContour& piece, cv::Poi
 }
 
 // Work images of one call, kept per thread from frame to frame: a dozen fresh ones per cluster
-// meant fresh pages from the system every frame (the benchmark's page faults doubled).
+// would take fresh pages from the system every frame.
 struct ForkScratch {
     cv::Mat1b zone;
     cv::Mat1f band, ownScore, otherScore;

@@ -1,6 +1,6 @@
 // A blade narrower than about 3 px reaches the sensor broken: lateral noise hands stretches of
 // it to the wall behind, and the clean-up leaves a stalk joined to the tuft and one or more
-// fragments farther up, each under half the blade (slim grass at nominal noise: recall 0). Here
+// fragments farther up, each under half the blade, so none matches it. Here
 // each small elongated fragment looks past both of its ends, along its own axis, for another
 // part of the mask; where one lies within fragmentLinkGap_px and within fragmentLinkAngle_deg
 // of that axis, a line of the fragment's width joins them. Parts that are not fragments (a tuft,

@@ -37,8 +37,8 @@ constexpr float kNormalMaxDepthChangeFactor = 0.02f;
 constexpr float kNormalSmoothingSize_px = 10.0f;
 constexpr int kRansacSeed = 12345;  // deterministic results run to run
 // A ground plane is a solid region: at least this share of its inliers has all 8 neighbours
-// inliers too (the noisy, quantised ground of the simulated sensor scores about 0.45-0.5 at the
-// sample stride; thin blades far less).
+// inliers too (the noisy, quantised ground of the simulated sensor scores well above it at the
+// sample stride; thin blades far below).
 constexpr float kMinPlaneSolidity = 0.3f;
 // Rejected (non-solid) planes give RANSAC this many more tries to find the ground.
 constexpr int kExtraPlaneAttempts = 2;
@@ -48,10 +48,9 @@ constexpr float kMinGroundComponentFraction = 0.005f;
 constexpr double kSmallGroundMeanDistanceFraction = 0.3;
 // Nothing is seen through the ground: a plane with more than kMaxShareBelow of the masked
 // points farther than kBelowTolerances plane tolerances beneath it (on the side away from the
-// camera) is not the ground. A plane through the tuft's fan, which leans 36-48 deg toward the
-// camera and passes the tilt and solidity tests, has the back wall and the far blades beneath
-// it (quadratic-leaf seed 1, one frame: such a plane removed the tuft's base and cut its blades
-// at mid-height).
+// camera) is not the ground. A plane through the tuft's fan, which leans toward the camera and
+// passes the tilt and solidity tests, has the back wall and the far blades beneath it; taken
+// for the ground it removes the tuft's base and cuts its blades at mid-height.
 constexpr float kBelowTolerances = 3.0f;
 constexpr double kMaxShareBelow = 0.05;
 

@@ -3,16 +3,15 @@
 //
 // An even count of readings has two middle ones, and at a blade's edge they are often one on the
 // blade and one on the wall behind (lateral noise moves the edge from frame to frame). Always
-// taking the farther one shrank every blade by the pixels the edge visits in half the frames,
-// always the nearer one grew it by them (simulated leaves, 1x noise, 2 frames, seeds 1-2: 320-840
-// px missed or 380-970 px extra per tuft, against 80-220 missed for one frame). So the
-// pixels alternate in a checkerboard between the nearer and the farther: the edge lies where it
-// does on average, and the edge smoothing along the contour evens out the alternation.
+// taking the farther one shrinks every blade by the pixels the edge visits in half the frames,
+// always the nearer one grows it by them. So the pixels alternate in a checkerboard between the
+// nearer and the farther: the edge lies where it does on average, and the edge smoothing along
+// the contour evens out the alternation.
 //
 // A blade under ~2 px wide is read as blade in fewer than half the frames (lateral noise hands
 // the rest to the wall behind, a different half each time), so its median is the wall and the
 // blade is lost. FusionMethod::NearestRecurring keeps, wherever one recurs, the nearest depth read
-// alike in a given share of the frames (README, "Fusing frames by recurring readings").
+// alike in a given share of the frames (see docs/capture.md#temporal-fusion).
 #include <cstdint>
 #include <opencv2/core.hpp>
 #include <vector>

@@ -216,8 +216,8 @@ TipTrails recoverTipTrails(const cv::Mat1b& candidates, const cv::Mat1b& recurri
     }
     // How ragged the edges are: the share of the pixels 2 to linkRadius_px outside the mask
     // that hold an in-band reading (that band is about (linkRadius_px - 1) / linkRadius_px of
-    // the zone around the mask). Lateral noise of 0.8 px puts ~2 % there, three times that
-    // ~20 %; then speckle chains reach as far as tips do and cannot be told from them.
+    // the zone around the mask). Lateral noise of 0.8 px puts few readings there, three times
+    // that many; then speckle chains reach as far as tips do and cannot be told from them.
     const double ringPixels = (cv::countNonZero(touching) - cv::countNonZero(inMask)) *
                               (linkRadius_px - 1.0) / linkRadius_px;
     const double ragged = ringPixels > 0.0 ? static_cast<double>(ownSeeds) / ringPixels : 0.0;
@@ -232,7 +232,7 @@ TipTrails recoverTipTrails(const cv::Mat1b& candidates, const cv::Mat1b& recurri
         return result;
     }
     // Readings up to `gap` px apart belong to one trail. Groups are grown from the seeds only (a
-    // flood fill over the sparse readings; labelling every component of the box cost 0.8 ms).
+    // flood fill over the sparse readings; labelling every component of the box costs more).
     // A group larger than a line of the longest trail (kMaxTrailWidth_px times as many readings)
     // is a surface, such as ground the band kept or a leaf behind, and is not followed.
     const int step = gap + 1;

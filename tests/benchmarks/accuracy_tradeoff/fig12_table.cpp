@@ -17,7 +17,7 @@ using modeling::BladeFit;
 
 const std::vector<int> kFig12Knots{128, 64, 32, 16, 8};  // 128 = the full skeleton, error 0
 constexpr int kFig12RandomTrials = 4;
-constexpr int kMaxFig12BladesPerPreset = 8;  // each costs ~1.5 s of Hausdorff
+constexpr int kMaxFig12BladesPerPreset = 8;  // each costs seconds of Hausdorff
 
 // Refiner names as chart series: gnuplot would read '_' as a subscript in the key.
 std::string seriesName(modeling::RefinerKind kind) {

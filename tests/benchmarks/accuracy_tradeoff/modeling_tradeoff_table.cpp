@@ -17,8 +17,8 @@ const std::vector<int> kRefinedKnots{0, 4, 8, 16, 32, 64};  // 0: refining off (
 const std::vector<int> kModelingFusionFrames{1, 3, 5};
 const std::vector<float> kTolerances_mm{0.f, 0.5f, 1.f, 2.f, 4.f, 8.f};
 
-// The charts put thread CPU time on x: on the shared, loaded build machine the wall time of the
-// same work varied up to 2.6x between configurations (both are in the CSV).
+// The charts put thread CPU time on x: on a shared, loaded machine the wall time of the same
+// work varies widely between configurations (both are in the CSV).
 const std::string kCpuTuftLabel =
     "CPU time per tuft: segmentation + fits (ms, one thread; wall time in the CSV)";
 

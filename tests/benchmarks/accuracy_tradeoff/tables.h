@@ -26,7 +26,7 @@ void captureTradeoff(const Plan& plan, const std::vector<Scene>& scenes,
 struct Fig12Input {
     std::map<std::string, std::vector<std::vector<glm::vec3>>> restKnots;
 };
-// Keeps the fit's skeleton (at most a few per preset: each costs ~1.5 s of Hausdorff).
+// Keeps the fit's skeleton (at most a few per preset: each costs seconds of Hausdorff).
 void appendFig12Skeleton(Fig12Input& input, const std::string& preset,
                          const modeling::BladeFit& fit);
 

@@ -6,10 +6,9 @@ namespace meadow::capture {
 
 // Asks glibc's allocator to keep freed memory for the next frame instead of handing it back to
 // the system: each frame allocates and frees frame-sized buffers (0.3-1.2 MB), and by default
-// glibc trims the top of its heap, or maps such buffers afresh, so every frame faulted those
-// pages back in. Measured on the segmentation benchmark's single-frame front end (one core):
-// 4.85 -> 4.6 ms a frame, page faults 370 -> 7 a frame. Holds on to at most 64 MB of freed
-// memory. Returns whether the allocator took the settings (false where it is not glibc's).
+// glibc trims the top of its heap, or maps such buffers afresh, so every frame faults those
+// pages back in. Holds on to at most 64 MB of freed memory. Returns whether the allocator took
+// the settings (false where it is not glibc's).
 bool keepFrameBuffersResident();
 
 }  // namespace meadow::capture

@@ -1,5 +1,5 @@
 #pragma once
-// Depth recordings on disk (README, "Recording format"): a folder holding recording.json and
+// Depth recordings on disk (docs/formats.md#recording): a folder holding recording.json and
 // depth/000000.png, depth/000001.png, ... as 16-bit single-channel PNGs in millimetres,
 // 0 = no reading. Reading goes through openDepthSource() (depth_source.h); this header holds
 // the writer and the small helpers the CLI needs. PNG and JSON details stay in capture/src.

@@ -23,7 +23,7 @@ inline std::string toString(DepthUnit unit) { return std::string(kDepthUnitNames
 // Millimetres per stored integer step.
 double millimetresPerUnit(DepthUnit unit);
 
-// What recording.json holds (README, "Recording format").
+// What recording.json holds (see docs/formats.md#recording).
 struct RecordingInfo {
     std::string sensor = "unknown";
     Intrinsics intrinsics;

@@ -5,9 +5,8 @@
 // the wall behind, and a different half in each frame. The per-pixel median of a fused group
 // keeps the wall there, so the tip trails of a group see only the dots that one group left. Over
 // a dozen frames most pixels of the tip are read as blade a few times, always at the blade's
-// depth, while speckle beside an edge is read as blade once in a while at scattered depths.
-// Measured (simulated sensor, nominal noise, leaf presets at 0.6-1.0 m): the sharp-tip preset's
-// visible ends; see the README, "Tips from readings that recur over frames".
+// depth, while speckle beside an edge is read as blade once in a while at scattered depths
+// (see docs/capture.md#readings-that-recur-over-a-run, docs/measurements/tip_reach.md).
 #include <cstdint>
 #include <opencv2/core/mat.hpp>
 #include <span>

@@ -102,15 +102,15 @@ struct SegmenterParams {
     float bandGrowStep_m = 0.015f;
 
     // --- Ground / background plane removal.
-    // Measured: organized multi-plane is 2-3x faster on clean frames but finds no ground once
-    // 2-3 % of the readings drop out (its integral-image normals break at holes); RANSAC does.
+    // RANSAC: organized multi-plane is faster, but its integral-image normals break at dropout
+    // holes and it then finds no ground (see docs/capture.md#plane-removal).
     PlaneMethod planeMethod = PlaneMethod::Ransac;
     float planeDistance_m = 0.012f;  // inlier tolerance; > sensor noise at 1-1.5 m
     float minPlaneFraction = 0.02f;  // a plane must hold this share of the masked pixels (the
                                      // ground seen at grazing angles reads mostly 0)
     // Only ground-like planes are removed: the normal within this angle of the camera's up
     // axis (-y), i.e. a camera pitched up to this much. The back wall is left to the depth band,
-    // and planes through a fan of blades or the wall-floor corner (measured 50-60 deg) are kept.
+    // and planes through a fan of blades or the wall-floor corner, which tilt further, are kept.
     float maxGroundTilt_deg = 45.0f;
     int maxPlanes = 1;
     int planeSampleStride_px = 2;  // RANSAC fits on every n-th pixel, inliers use all pixels
@@ -136,12 +136,11 @@ struct SegmenterParams {
     // Edge smoothing: the contour's points averaged along it by a Gaussian of this sigma (in
     // contour points), each moved at most edgeSmoothingMaxShift_px, and the mask redrawn from
     // them; tips, valleys between blades and parts under 3 px wide are kept
-    // (contour_smoothing.cpp). It stands in for the sensor's ragged edge (lateral noise moves
-    // edge pixels ~0.8 px each way). Measured at nominal noise (2 seeds): median IoU +0.01-0.03
-    // on the leaf presets over a Gaussian blur of the mask (sigma 4 and 6 alike, 2 and 8
-    // worse). 0 = off.
+    // (contour_smoothing.cpp). It undoes the sensor's ragged edge (lateral noise moves edge
+    // pixels ~0.8 px each way) better than a blur of the mask does. 0 = off
+    // (see docs/capture.md#clean-up-and-edge-smoothing).
     float edgeSmoothingSigma_px = 4.0f;
-    float edgeSmoothingMaxShift_px = 1.0f;  // 1.5 measured alike, 2 worse on sharp-tip
+    float edgeSmoothingMaxShift_px = 1.0f;  // about the lateral noise; larger hurts sharp tips
     int openKernel_px = 0;                  // opening removes thin blades too, so off by default
     int minRegionArea_px = 60;              // connected regions smaller than this are dropped
     int maxHoleArea_px = 30;                // enclosed holes up to this size are filled (dropouts)
@@ -156,18 +155,16 @@ struct SegmenterParams {
     float tipTrailMinReach_px = 4.0f;
     int tipTrailGap_px = 2;
     int tipTrailMaxLength_px = 48;  // how far from the mask's box a trail is searched
-    // Trails are not followed when edges are this ragged: the share of the pixels 2-3 px outside
-    // the mask that hold in-band readings (measured ~1-5 % at nominal noise, 5-18 % at 2x,
-    // 11-33 % at 4x). Beyond it speckle chains reach as far as tips, and following them cost
-    // recall (3x noise: 0.60 -> 0.40).
+    // Trails are not followed when edges are this ragged (Segmentation::edgeRaggedness), well
+    // above a Kinect's nominal noise: beyond it speckle chains reach as far as tips, and
+    // following them costs recall (see docs/capture.md#tip-trails).
     float tipTrailMaxRaggedness = 0.1f;
 
     // Thin fragments: a part of the cleaned mask of at most fragmentMaxArea_px that is at least
     // fragmentMinAspect times as long as wide is joined to another part lying past one of its
     // ends within fragmentLinkGap_px and fragmentLinkAngle_deg of its axis (0 gap = off): a
-    // blade under ~3 px wide comes out of the sensor as a stalk and fragments. Measured at
-    // nominal noise, one frame, seeds 1-5: slim-grass recall 0.07 -> 0.24; at 2x shrub-leaf
-    // 0.60 -> 0.76 and sharp-tip 0.50 -> 0.67; the leaves at 1x unchanged.
+    // blade under ~3 px wide comes out of the sensor as a stalk and fragments
+    // (see docs/capture.md#thin-fragment-links).
     float fragmentLinkGap_px = 10.0f;
     int fragmentMaxArea_px = 600;
     float fragmentMinAspect = 4.0f;
@@ -183,19 +180,16 @@ struct SegmenterParams {
     float minPersistence_px = 6.0f;
     float minPersistenceFraction = 0.06f;
     int minBladeContour_px = 12;  // contour pieces shorter than this merge into a neighbour
-    // Which blade owns the shared base below the forks, where blades overlap. Measured at
-    // nominal noise (3 seeds): Wedge lifts median IoU over NearestContour by 0.01-0.03 on the
-    // leaf presets (quadratic-leaf 0.78 -> 0.81) and 0.08 on touching leaves; NearestContour
-    // gives the whole base to the two outermost blades, whose contour pieces enclose it.
+    // Which blade owns the shared base below the forks, where blades overlap. NearestContour
+    // gives the whole base to the two outermost blades, whose contour pieces enclose it; Wedge
+    // shares it out (see docs/capture.md#partition-and-fork-zone).
     BladeMaskMethod bladeMask = BladeMaskMethod::Wedge;
     // Wedge only, where depth is known: the fork zone (the triangles between each blade's
     // valleys and the base point) is decided again by each blade's centre line continued to the
     // base and by depth, since a blade in front covers its neighbours' lower parts there
-    // (fork_partition.cpp). Measured at nominal noise, one frame, seeds 1-5, median IoU:
-    // quadratic / shrub / bamboo / sharp-tip 0.825 / 0.821 / 0.877 / 0.783 -> 0.863 / 0.828 /
-    // 0.913 / 0.820. forkDepthSigma_mm weighs a depth difference against half a half width off
-    // the centre line. Not where the edges are ragged beyond forkMaxRaggedness (at 2x noise,
-    // 4-8 %, the continued centre lines lose: shrub-leaf 0.55 -> 0.52).
+    // (fork_partition.cpp; see docs/capture.md#partition-and-fork-zone). forkDepthSigma_mm
+    // weighs a depth difference against half a half width off the centre line. Not where the
+    // edges are ragged beyond forkMaxRaggedness: there the continued centre lines lose.
     bool forkByDepth = true;
     float forkDepthSigma_mm = 3.0f;
     float forkMaxRaggedness = 0.03f;
@@ -204,19 +198,19 @@ struct SegmenterParams {
     float minResolvableWidth_px = 2.0f;  // TooThin below this mean width
     // TooThin also when fewer of the blade's pixels than this survive a 3x3 erosion (lie over a
     // pixel inside its edge): a blade under ~3 px wide. The mean width (area / centre line)
-    // misses such blades under noise, which widens their ragged masks. Measured at nominal noise:
-    // matched leaves keep >= 31 % at 0.7-0.9 m and 22-25 % at 1.0 m (shrub, sharp-tip); 21 of the
-    // 27 slim-grass pieces that match no blade (seeds 1-2) keep < 20 %. 0 = off.
+    // misses such blades under noise, which widens their ragged masks. The threshold lies below
+    // what matched leaves keep and above most unmatched slim-grass pieces
+    // (see docs/capture.md#flags). 0 = off.
     float minInteriorFraction = 0.2f;
-    // ...when the edges are ragged (Segmentation::edgeRaggedness at least this: ~0.2 % on
-    // noise-free frames, 1-5 % at nominal noise). On clean edges a 2-3 px blade is resolved,
-    // and slim grass without noise matched 16 of 22 pieces before this test.
+    // ...when the edges are ragged (Segmentation::edgeRaggedness at least this, between
+    // noise-free frames and a Kinect's nominal noise). On clean edges a 2-3 px blade is
+    // resolved, and the test would flag blades that match.
     float raggedEdges = 0.01f;
     float curlTurn_deg = 150.0f;     // CurlsSideways when the centre line turns more
     float overlapWidthRatio = 2.2f;  // Overlapping when this much wider than the median
     // Overlapping when a blade's contour dips between two tips by at least this share of the
-    // cut threshold: too shallow to cut, deep enough for two blades that touch (measured: no
-    // clean leaf piece at 0-1x noise reaches 0.01 of it; merged touching blades 0.76).
+    // cut threshold: too shallow to cut, deep enough for two blades that touch (clean leaf
+    // pieces dip far less, merged touching blades far more).
     float secondTipFraction = 0.4f;
 
     // Empty when usable; otherwise what is wrong with the parameters.
@@ -257,8 +251,8 @@ struct Segmentation {
     // trail filled in can carry the wall behind. 0 and 0 for a given mask (segmentMask).
     float tuftNearest_m = 0.0f, tuftFarthest_m = 0.0f;
     // How ragged the sensor left the mask's edges: the share of the pixels 2-3 px outside the
-    // mask that hold in-band readings (tip-trail stage; ~0.2 % without noise, 1-5 % at a
-    // Kinect's nominal lateral noise, 11-33 % at 4x). 0 when not measured (segmentMask).
+    // mask that hold in-band readings (tip-trail stage); it grows with the sensor's lateral
+    // noise. 0 when not measured (segmentMask).
     float edgeRaggedness = 0.0f;
     // Frames the tip trails' recurring readings were taken over (Segmenter::segment with
     // RecurringReadings); 0 when the trails saw only this segmentation's own readings.

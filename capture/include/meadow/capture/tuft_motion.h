@@ -7,9 +7,8 @@
 // farther apart the frames are. So the test compares two shares: of the in-band readings of a
 // frame, those with no reading of the same depth in the 3x3 neighbourhood of a frame nearLag
 // later, and of one farLag later: the tuft moved where the second is movedRatio times the first
-// and minMovedShare more. Measured (simulated sensor, nominal noise, seeds 1-3, 12 frames): the
-// ten still presets 0.95-1.05, the wind preset at 0.6-1.0 m 2.10-2.80 (README, "A tuft that
-// moves").
+// and minMovedShare more (see docs/capture.md#motion-test,
+// docs/measurements/motion_calibration.md).
 #include <span>
 #include <string>
 
@@ -23,11 +22,8 @@ struct MotionParams {
     int agreement_mm = 15;    // a reading within this of one nearby is unchanged
     float movedRatio = 1.5f;  // farLag share over nearLag share from which the tuft moved
     // ...and by at least this share of the readings more farLag apart than nearLag apart. Where
-    // little changes at all, a few readings drifting make a large ratio: the real Kinect
-    // recording of a still room (oni-3dj-room) changes 0.47 % of its 0.6-1.0 m readings one frame
-    // apart and 0.82 % six apart (1.7x, 0.35 points). On the wind preset made gentler, 12 frames,
-    // seeds 1-2: tips moving up to 2.3 px add 0.1-1.5 points at 1.1-1.4x, tips moving 3-70 px
-    // add 1.4-11 points at 1.7-3.5x (README, "A tuft that moves").
+    // little changes at all, a few readings drifting make a large ratio, as on a real Kinect
+    // recording of a still room (see docs/measurements/motion_calibration.md).
     float minMovedShare = 0.01f;
     // Empty when usable; otherwise what is wrong.
     [[nodiscard]] std::string problem() const;

@@ -1,6 +1,6 @@
 #pragma once
 // The archetype library: the product of capture, the input of the renderer. On disk it is a
-// versioned JSON file (README, "Archetype library format"), optionally with a glTF 2.0 .glb
+// versioned JSON file (docs/formats.md#archetype-library), optionally with a glTF 2.0 .glb
 // holding one mesh per archetype for DCC tools.
 #include <filesystem>
 #include <string>

@@ -2,7 +2,7 @@
 // Rooting a segmented blade at its tuft's base. The segmenter partitions a tuft's contour at the
 // minima of its distance to the cluster's base point (capture/segmenter.h), so every blade's
 // contour starts where it forks from its neighbours, and the shared trunk below the fork belongs
-// to no single blade: the segmented blade starts 10-30 % of its length above its root. The blades
+// to no single blade: the segmented blade starts well above its root. The blades
 // of a tuft grow from one base, so the skeleton is continued from its lower end straight down to
 // the cluster's base point in 3D, and the fitted v0 is the tuft's root.
 #include <glm/vec2.hpp>
@@ -27,11 +27,11 @@ struct RootParams {
     int minDepthReadings = 5;
     // A base farther from the blade's lower end than this multiple of the segmented skeleton's
     // length is not the blade's root (a blade not attached to the tuft, a wrong cluster): the
-    // blade is left unrooted and flagged. Measured extensions are 0.1-0.6 of the visible length.
+    // blade is left unrooted and flagged. A true root piece stays well within it.
     float maxExtensionFraction = 1.f;
     // The base point is the centroid of the cluster's lowest rows, and the plane removal clears
     // what lies within its tolerance of the ground, so the lowest visible part of a tuft sits a
-    // few millimetres above its root (measured 3.3-4.8 mm on the leaf presets, up to 20 mm).
+    // few millimetres above its root (see docs/capture.md#rooting).
     // toLowestRow: the base moves down to the cluster's lowest pixel under it. dropToGround:
     // then, with a ground plane from the segmentation at most maxGroundDrop_m below, it moves
     // onto that plane along its normal: a tuft grows from the ground.

@@ -1,12 +1,10 @@
 #pragma once
 // Continuing a segmented blade past its visible tip. A blade's tip thins below the sensor's
-// resolution before it ends, so the segmented contour stops short of the true tip (measured at
-// 0.87-0.97 of the true arc length on the leaf presets at nominal noise). Where the measured width
-// tapers toward the tip, the width's linear trend over the upper part of the chain is extrapolated
-// to zero, and the skeleton is continued straight along its 3D end tangent by that length.
-// The defaults were chosen on the four leaf presets at nominal noise (modeling_accuracy_test.cpp):
-// tip RMS 24.8 -> 12.9 mm, height error 11.8 -> 4.2 %, width MAE 14.6 -> 10.3 % of max width.
-// The piece is straight: a drooping tip ends beside the true curve.
+// resolution before it ends, so the segmented contour stops short of the true tip. Where the
+// measured width tapers toward the tip, the width's linear trend over the upper part of the chain
+// is extrapolated to zero, and the skeleton is continued straight along its 3D end tangent by that
+// length. The defaults were chosen on the leaf presets at nominal noise. The piece is straight:
+// a drooping tip ends beside the true curve (see docs/capture.md#tip-extension).
 #include <optional>
 
 #include "meadow/modeling/skeleton.h"
@@ -24,23 +22,15 @@ struct TipParams {
     // fitSegmentedBlade: a blade whose tip the segmenter followed along a tip trail
     // (BladeContour::tipOnTrail) ends in its own taper, one or two pixels wide; its end is then
     // evidence of where the tip is, and the trend runs to the end of the chain (widthFitTo 1).
-    // Measured at nominal noise (leaf presets, seeds 1-3, 0.6-1.0 m): tip RMS
-    // 9.9 / 7.9 / 9.4 mm without, 8.6 / 7.1 / 8.5 mm with.
     bool toEndOnTrail = true;
     // Part of the chain (from tangentFitFrom to the tip) whose points give the end tangent by a
     // least-squares line through them against arc length.
     float tangentFitFrom = 0.87f;
-    // Longest extension, as a fraction of the visible skeleton's 3D length: 0.2 before the
-    // segmenter's tip trails; with less of the tip missing, shorter caps overshoot less. And for
-    // a blade whose tip lies on a trail (BladeContour::tipOnTrail) the visible end is within a
-    // pixel or two of the tip: maxExtensionOnTrail. Measured at nominal noise (leaf presets,
-    // seeds 1 / 2 / 3, 0.6-1.0 m), tip RMS (mm) for maxExtensionFraction / maxExtensionOnTrail:
-    // - 0.2 / 0.2: 11.0 / 8.0 / 9.5
-    // - 0.15 / 0.15: 8.6 / 7.1 / 8.5
-    // - 0.15 / 0 (trail tips not extended): 8.9 / 7.0 / 8.5
-    // - 0.15 / 0.05: 6.0 / 6.3 / 7.1
-    // - 0.1 / 0.05: 6.1 / 5.7 / 6.6 (the defaults)
-    // - 0.05 / 0.05: 7.1 / 6.7 / 7.1
+    // Longest extension, as a fraction of the visible skeleton's 3D length: with the segmenter's
+    // tip trails less of the tip is missing, and shorter caps overshoot less. And for a blade
+    // whose tip lies on a trail (BladeContour::tipOnTrail) the visible end is within a pixel or
+    // two of the tip: maxExtensionOnTrail, smaller still but not 0 (trail tips still fall short).
+    // Both chosen by tip RMS on the leaf presets at nominal noise (docs/capture.md#tip-extension).
     float maxExtensionFraction = 0.1f;
     float maxExtensionOnTrail = 0.05f;
     // Where the segmenter's trails could also run through readings recurring over a dozen
@@ -52,10 +42,8 @@ struct TipParams {
     // (along a trail they are the trail's own 1-2 px, not the blade's taper): the length over
     // which an even taper from the blade's widest to nothing along its whole length narrows by
     // this many pixels. Seen from twice as far, half as many pixels wide, a blade is extended
-    // twice as far. A cap of a fixed 0.025 of the length on the trend's extension let near tips
-    // overshoot and stopped far ones short (shrub-leaf, mean along the tangent: +1.1 mm at 0.6 m,
-    // -3.7 mm at 1.0 m). Measured (4 leaf presets, seeds 1-2, 0.6-1.0 m, 4 groups of 3 frames,
-    // tracked): see the README, "Tips from readings that recur over frames".
+    // twice as far. A fixed fraction of the length would let near tips overshoot and stop far
+    // ones short (see docs/capture.md#tip-extension, docs/measurements/tip_reach.md).
     float extensionOnRecurringTrail_px = 0.2f;
     // When > 0, extendSkeletonTip extends by this fraction of the visible length instead of to
     // the width trend's zero (segmentedBladeSkeleton sets it for recurring trail tips).

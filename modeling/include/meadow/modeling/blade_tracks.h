@@ -2,8 +2,8 @@
 // One blade of a still tuft, seen once in each fused group of a recording, becomes one archetype:
 // its observations are linked into a track by where their skeletons lie in camera space, and the
 // track is fitted once, to the mean of its skeletons. The sensor's noise is drawn afresh in every
-// frame, so the mean of a blade's skeletons is nearer the blade than any one of them (tip RMS on
-// the leaf presets over 4 groups of 3 frames: README, "One archetype per blade").
+// frame, so the mean of a blade's skeletons is nearer the blade than any one of them
+// (see docs/capture.md#one-archetype-per-blade, docs/measurements/modeling_groups.md).
 #include <cstddef>
 #include <vector>
 
@@ -16,10 +16,8 @@ struct BladeTrackParams {
     // moves between groups or a camera that does.
     bool enabled = true;
     // Two observations are one blade when skeletonDistance_m is within this fraction of the
-    // shorter one's length. Measured over the blade-type presets at nominal noise (0.6-1.0 m,
-    // seeds 1-2, 4 groups of 3 fused frames, pairs of observations matched to true blades): the
-    // same blade 0.001-0.018 (95th percentile 0.004-0.010 preset by preset), two different
-    // blades 0.093 and more on the leaves, 0.045 on slim grass.
+    // shorter one's length. On the blade-type presets at nominal noise, views of one blade lie
+    // well within it and views of two different blades beyond it.
     float maxDistanceFraction = 0.03f;
     // The mean takes a track's members of the majority's rooting (blade_root.h; ties: rooted)
     // whose length lies within this fraction of their median length: a view of the blade cut

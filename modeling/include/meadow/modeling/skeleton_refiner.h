@@ -29,8 +29,8 @@ float movementVariance_m2(const KnotTrajectories& frames, int a, int b);
 float movementDifference(float dis, float var, float mu, float disScale, float varScale);
 
 struct RefinerParams {
-    // Weight of the distance term. 0.5 weighs spacing and relative motion equally; see the README
-    // section "Refining" for the sweep behind this default.
+    // Weight of the distance term. 0.5 weighs spacing and relative motion equally
+    // (see docs/capture.md#refining).
     float mu = 0.5f;
     std::uint64_t seed = 1;  // random refiner only
 };

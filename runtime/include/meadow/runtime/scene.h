@@ -1,5 +1,5 @@
 #pragma once
-// A scene file (JSON, format "meadow.scene", version 1; README "Scene format"): the meshes grass
+// A scene file (JSON, format "meadow.scene", version 1; docs/formats.md#scene): the meshes grass
 // grows on, opaque props, the archetypes, how blades are seeded, camera, light, wind, colliders,
 // physics, culling and render settings. loadSceneDescription() reads and checks it; the renderer
 // turns it into GPU buffers.
@@ -106,11 +106,11 @@ struct CullingDescription {
     bool distance = true;
     bool occlusion = true;
     // |dot(view, width direction)| above this is culled. 0.97 (not the paper's 0.9): only blades
-    // within 14 deg of edge-on, which show under a quarter of their width; 0.9 culled ~20 % of
-    // the blades and visibly thinned the meadow (tests/runtime/culling_image_GLTest.cpp).
+    // within 14 deg of edge-on, which show under a quarter of their width; 0.9 visibly thins the
+    // meadow (see docs/rendering.md#culling).
     float orientationThreshold = 0.97f;
     // Eq. (15) thins from d_max / n on: 100 m / 4 levels = 25 m, where a 1 cm blade is under
-    // half a pixel even at 1080p (40 m / 8 levels thinned from 5 m, visibly).
+    // half a pixel even at 1080p; thinning nearer than that shows.
     float maxDistance_m = 100.f;
     int distanceLevels = 4;
 };
