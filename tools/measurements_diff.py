@@ -30,7 +30,7 @@ def csv_rows(text):
 def md_rows(text):
     rows, keep = set(), None
     for line in text.splitlines():
-        if GENERATED_LINE.match(line):
+        if GENERATED_LINE.match(line) or not line.strip():
             continue
         if not line.startswith("|"):
             rows.add((line,))
