@@ -8,7 +8,7 @@
 #include <glm/mat4x4.hpp>
 #include <glm/vec3.hpp>
 
-#include "../../shaders/shared/blade_types.h"
+#include "shared/blade_types.h"
 #include "gl/gl_object.h"
 #include "gl/shader_program.h"
 #include "meadow/runtime/culling.h"

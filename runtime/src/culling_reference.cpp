@@ -4,7 +4,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "../../shaders/shared/physics_params.h"
+#include "shared/physics_params.h"
 
 namespace meadow::runtime {
 
@@ -15,9 +15,9 @@ using gpu::BladeGpu;
 using gpu::BladeRestGpu;
 using gpu::CullParamsGpu;
 using gpu::PhysicsParamsGpu;
-#include "../../shaders/common_physics.glsl"
+#include "common_physics.glsl"
 // common_culling.glsl uses common_physics.glsl: keep this order (separate include blocks).
-#include "../../shaders/common_culling.glsl"
+#include "common_culling.glsl"
 }  // namespace cull_shader
 
 gpu::CullParamsGpu packCullParams(const CullSettings& s, const glm::mat4& clipFromWorld,

@@ -9,7 +9,7 @@
 #include <span>
 #include <vector>
 
-#include "../../shaders/shared/cull_params.h"
+#include "shared/cull_params.h"
 #include "meadow/runtime/culling.h"
 
 namespace meadow::runtime {

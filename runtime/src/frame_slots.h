@@ -7,7 +7,7 @@
 #include <array>
 #include <cstddef>
 
-#include "../../shaders/shared/blade_types.h"
+#include "shared/blade_types.h"
 #include "gl/gl_object.h"
 #include "meadow/runtime/renderer.h"
 

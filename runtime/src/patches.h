@@ -6,7 +6,7 @@
 #include <glm/vec3.hpp>
 #include <vector>
 
-#include "../../shaders/shared/blade_types.h"
+#include "shared/blade_types.h"
 
 namespace meadow::runtime {
 

@@ -12,7 +12,7 @@ using namespace glm;
 using gpu::BladeGpu;
 using gpu::BladeRestGpu;
 using gpu::PhysicsParamsGpu;
-#include "../../shaders/common_physics.glsl"
+#include "common_physics.glsl"
 }  // namespace shader
 
 ValidatedCurve validateBladeReference(glm::vec3 v0, glm::vec3 v2, glm::vec3 up, float h,

@@ -7,7 +7,7 @@
 #include <span>
 #include <vector>
 
-#include "../../shaders/shared/physics_params.h"
+#include "shared/physics_params.h"
 #include "meadow/runtime/physics.h"
 
 namespace meadow::runtime {

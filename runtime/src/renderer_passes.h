@@ -2,7 +2,7 @@
 // The interface of the per-frame compute passes (physics, culling) the renderer runs between
 // the depth pre-pass and the blade draw. All buffers of SceneGpu are bound at their blade_types.h
 // binding points when run() is called.
-#include "../../shaders/shared/blade_types.h"
+#include "shared/blade_types.h"
 #include "gl/gl_object.h"
 #include "meadow/runtime/scene.h"
 #include "scene_gpu.h"

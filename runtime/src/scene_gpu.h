@@ -5,7 +5,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "../../shaders/shared/blade_types.h"
+#include "shared/blade_types.h"
 #include "gl/gl_object.h"
 #include "meadow/runtime/scene.h"
 #include "scene_mesh.h"

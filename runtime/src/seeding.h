@@ -9,7 +9,7 @@
 #include <opencv2/core/mat.hpp>
 #include <vector>
 
-#include "../../shaders/shared/blade_types.h"
+#include "shared/blade_types.h"
 #include "meadow/modeling/archetype.h"
 #include "meadow/runtime/scene.h"
 #include "scene_mesh.h"
