@@ -2,15 +2,18 @@
 #include <CLI/CLI.hpp>
 #include <iostream>
 #include <memory>
+#include <optional>
 #include <sstream>
 #include <string>
 #include <vector>
 
 #include "commands.h"
 #include "meadow/capture/depth_source.h"
+#include "meadow/core/atomic_file.h"
 #include "meadow/modeling/archetype_glb.h"
 #include "meadow/modeling/capture_pipeline.h"
 #include "option_checks.h"
+#include "output_checks.h"
 #include "progress.h"
 #include "source_options.h"
 
@@ -60,8 +63,26 @@ void checkBand(float near_m, float far_m) {
     }
 }
 
+// The outputs are checked before any frame is read: a capture replaces a previous library or
+// .glb of its own, never another file, and never one of its outputs by the other.
+void checkOutputs(const CaptureArgs& args) {
+    if (!args.glb.empty() && sameFile(args.out, args.glb))
+        throw CLI::ValidationError(
+            "--out/--glb", "both name " + args.out + "; give the library and the .glb two files");
+    refuseToReplace(args.out, "--out", modeling::isArchetypeLibraryFile,
+                    "it is not an archetype library");
+    if (!args.glb.empty())
+        refuseToReplace(args.glb, "--glb", modeling::isMeadowGlb, "it is not a .glb meadow wrote");
+    if (!args.debug.empty())
+        refuseFolderOfOthers(args.debug, "--debug", isOverlayName,
+                             "it holds files that are not capture overlays");
+    checkWritable(args.out);
+    if (!args.glb.empty()) checkWritable(args.glb);
+}
+
 void runCapture(CaptureArgs& args) {
     checkBand(args.options.segmenter.nearDepth_m, args.options.segmenter.farDepth_m);
+    checkOutputs(args);
     modeling::CaptureOptions options = args.options;
     options.debugDir = args.debug;
     // The options' checks have already refused any other name.
@@ -77,8 +98,16 @@ void runCapture(CaptureArgs& args) {
         [&progress](int done, int) { progress.update(static_cast<std::size_t>(done)); });
     progress.finish();
 
-    modeling::saveArchetypeLibrary(result.library, args.out);
-    if (!args.glb.empty()) modeling::exportArchetypeGlb(result.library, args.glb);
+    // Both outputs are written in full before either replaces what was there.
+    AtomicFile library(args.out);
+    library.stream() << modeling::serialiseArchetypeLibrary(result.library);
+    std::optional<AtomicFile> glb;
+    if (!args.glb.empty()) {
+        glb.emplace(args.glb);
+        glb->stream() << modeling::archetypeGlbBytes(result.library);
+    }
+    library.commit();
+    if (glb) glb->commit();
 
     const auto& s = result.summary;
     std::cout << "captured " << s.bladesModelled << " of " << s.bladesFound << " blade(s) from "

@@ -5,8 +5,12 @@
 #include "commands.h"
 #include "meadow/capture/frame_memory.h"
 #include "meadow/core/error.h"
+#include "meadow/core/temporaries.h"
 
 int main(int argc, char** argv) {
+    // First, before any thread starts: an interrupted run removes the temporaries it was
+    // writing (every output is written to one and renamed into place when complete).
+    meadow::installTemporaryCleanup();
     meadow::capture::keepFrameBuffersResident();  // capture and render run frame after frame
     CLI::App app{"meadow: capture real grass with a depth camera and render meadows of it"};
     app.require_subcommand(1);

@@ -9,6 +9,7 @@
 
 #include "commands.h"
 #include "meadow/core/atomic_file.h"
+#include "meadow/core/staged_folder.h"
 #include "meadow/modeling/archetype_library.h"
 #include "meadow/runtime/culling.h"
 #include "meadow/runtime/error.h"
@@ -17,10 +18,23 @@
 #include "meadow/runtime/physics.h"
 #include "meadow/runtime/renderer.h"
 #include "meadow/runtime/scene.h"
+#include "output_checks.h"
 #include "progress.h"
 
 namespace meadow::cli {
 namespace {
+
+constexpr const char* kStatsFileName = "stats.csv";
+
+// What a render's output folder holds: frame_NNNNN.png and stats.csv.
+bool isRenderOutputName(const std::string& name) {
+    constexpr std::string_view kPrefix = "frame_", kSuffix = ".png";
+    const bool frame =
+        name.size() > kPrefix.size() + kSuffix.size() && name.starts_with(kPrefix) &&
+        name.ends_with(kSuffix) &&
+        name.find_first_not_of("0123456789", kPrefix.size()) == name.size() - kSuffix.size();
+    return frame || name == kStatsFileName;
+}
 
 struct RenderArgs {
     std::string scene;
@@ -49,11 +63,11 @@ void runRender(const RenderArgs& args) {
         scene.render.width_px = w;
         scene.render.height_px = h;
     }
-    std::error_code ec;
-    fs::create_directories(args.out, ec);
-    if (ec)
-        throw runtime::RuntimeError("render: cannot create the output folder " + args.out + " (" +
-                                    ec.message() + "); choose a writable --out");
+    // The output folder is one unit: frames and statistics are written beside it and replace a
+    // previous render whole, so no old frame outlives a new stats.csv.
+    refuseFolderOfOthers(args.out, "--out", isRenderOutputName,
+                         "it holds files that are not a render's frames and statistics");
+    StagedFolder staged(args.out);
 
     runtime::GlContext context;
     runtime::Renderer renderer(context, scene);
@@ -75,14 +89,15 @@ void runRender(const RenderArgs& args) {
         char name[32];
         std::snprintf(name, sizeof name, "frame_%05d.png", i);
         writeFileAtomically(
-            fs::path(args.out) / name,
+            staged.path() / name,
             std::string_view(reinterpret_cast<const char*>(png.data()), png.size()));
         csv += runtime::toCsvRow(frame.stats);
         totalFrame_ms += frame.stats.frame_ms;
         progress.update(static_cast<std::size_t>(i + 1));
     });
     progress.finish();
-    writeFileAtomically(fs::path(args.out) / "stats.csv", csv);
+    writeFileAtomically(staged.path() / kStatsFileName, csv);
+    staged.commit();
     std::cout << "wrote " << args.frames << " frame(s) of " << renderer.bladeCount()
               << " blades to " << args.out << " (mean frame time " << totalFrame_ms / args.frames
               << " ms; stats.csv)\n";

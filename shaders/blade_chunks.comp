@@ -10,7 +10,7 @@ layout(std430, binding = DRAW_CHUNK_SSBO_BINDING) writeonly buffer Chunks { Draw
 uniform uint uChunkCount;
 
 void main() {
-    uint k = gl_GlobalInvocationID.x;
+    uint k = flatInvocation();
     if (k >= uChunkCount) return;
     uint first = k * uint(BLADE_DRAW_CHUNK);
     uint count = command.vertexCount > first ? min(command.vertexCount - first, uint(BLADE_DRAW_CHUNK)) : 0u;

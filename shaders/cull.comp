@@ -9,7 +9,7 @@
 // The command and the stats are reset by the host (glClearNamedBufferSubData + glMemoryBarrier)
 // before this dispatch: barrier() orders nothing between workgroups.
 // Prepended by the loader: shared/blade_types.h, shared/physics_params.h, shared/cull_params.h,
-// common_physics.glsl, common_culling.glsl.
+// common_dispatch.glsl, common_physics.glsl, common_culling.glsl.
 layout(local_size_x = BLADE_WORKGROUP_SIZE) in;
 
 layout(std140, binding = CULL_UBO_BINDING) uniform CullBlock { CullParamsGpu params; };
@@ -40,7 +40,8 @@ bool occluded(vec4 q) {
 
 void main() {
     uint lane = gl_LocalInvocationID.x;
-    PatchGpu bladePatch = patches[gl_WorkGroupID.x];
+    if (flatWorkGroup() >= params.counts.x) return;  // uniform over the group
+    PatchGpu bladePatch = patches[flatWorkGroup()];
     uint first = bladePatch.range.x;
     uint count = bladePatch.range.y;
     if (lane < 4u) groupCulled[lane] = 0u;

@@ -3,7 +3,8 @@
 // One invocation per blade. The math lives in common_physics.glsl, which the CPU reference
 // (runtime/src/physics_reference.cpp) compiles as C++; this file only moves data, and its loop
 // is mirrored line for line in physicsStepReference().
-// Prepended by the loader: shared/blade_types.h, shared/physics_params.h, common_physics.glsl.
+// Prepended by the loader: shared/blade_types.h, shared/physics_params.h, common_dispatch.glsl,
+// common_physics.glsl.
 layout(local_size_x = BLADE_WORKGROUP_SIZE) in;
 
 layout(std140, binding = PHYSICS_UBO_BINDING) uniform PhysicsBlock { PhysicsParamsGpu params; };
@@ -14,7 +15,7 @@ layout(std430, binding = COLLIDER_SSBO_BINDING) restrict readonly buffer Collide
 };
 
 void main() {
-    uint i = gl_GlobalInvocationID.x;
+    uint i = flatInvocation();
     if (i >= params.counts.x) return;
     BladeGpu blade = blades[i];
     BladeRestGpu rest = rests[i];

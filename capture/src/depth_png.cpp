@@ -9,6 +9,7 @@
 #include <system_error>
 
 #include "meadow/capture/error.h"
+#include "meadow/core/library_messages.h"
 
 namespace meadow::capture::detail {
 
@@ -83,15 +84,17 @@ cv::Mat1w readDepthPng(const fs::path& file) {
                            " is truncated (it does not end with the PNG end marker): re-export "
                            "the frame or remove it from the folder");
     cv::Mat decoded;
+    CapturedStderr libpng;  // what libpng says of a corrupt file belongs in our one line
     try {
         decoded = cv::imdecode(bytes, cv::IMREAD_UNCHANGED);
     } catch (const cv::Exception&) {
         decoded.release();  // reported below like any other undecodable file
     }
+    const std::string said = libpng.text();
     if (decoded.empty())
-        throw CaptureError(file.string() +
-                           " is corrupt (OpenCV cannot decode it): re-export the frame or "
-                           "remove it from the folder");
+        throw CaptureError(file.string() + " is corrupt (" +
+                           (said.empty() ? std::string("OpenCV cannot decode it") : said) +
+                           "): re-export the frame or remove it from the folder");
     if (decoded.type() != CV_16UC1)
         throw CaptureError(file.string() + (decoded.depth() == CV_8U ? " is an " : " is a ") +
                            describeType(decoded) + " PNG, but " + kFrameFormatHint +

@@ -37,6 +37,8 @@ std::unique_ptr<DepthSource> openDepthSource(const std::string& uri, const Sourc
     const fs::path folder(uri);
     std::error_code ec;
     const fs::file_status status = fs::status(folder, ec);
+    if (ec == std::errc::too_many_symbolic_link_levels)
+        throw CaptureError(uri + " is a loop of symbolic links: " + kWhatToGive);
     if (!fs::exists(status)) throw CaptureError(uri + " does not exist: " + kWhatToGive);
     if (!fs::is_directory(status)) {
         if (detail::hasPngExtension(folder))

@@ -3,8 +3,11 @@
 #include <OpenNI.h>
 #include <unistd.h>
 
+#include <cerrno>
 #include <chrono>
 #include <climits>
+#include <cstring>
+#include <fstream>
 #include <iterator>
 #include <opencv2/core.hpp>
 #include <string>
@@ -14,6 +17,8 @@
 #include "meadow/capture/depth_source.h"
 #include "meadow/capture/error.h"
 #include "meadow/capture/recording.h"
+#include "meadow/core/staged_folder.h"
+#include "meadow/core/temporaries.h"
 #include "openni_runtime.h"
 #include "openni_source.h"
 
@@ -32,19 +37,21 @@ constexpr std::chrono::milliseconds kRecorderStartups[] = {std::chrono::millisec
                                                            std::chrono::milliseconds(500),
                                                            std::chrono::milliseconds(2000)};
 
-// "<path>.tmp.<pid><suffix>" beside `path`; removed on destruction unless released.
-class Temporary {
+// "<path>.tmp.<pid>.oni" beside `path` (OpenNI2's recorder wants the extension): removed on
+// destruction or an interruption unless committed.
+class TemporaryOni {
 public:
-    Temporary(const fs::path& path, const std::string& suffix) {
-        path_ = path;
-        path_ += ".tmp." + std::to_string(::getpid()) + suffix;
+    explicit TemporaryOni(const fs::path& path) : path_(temporaryFor(path, ".oni")) {
+        sweepStaleTemporaries(path);
+        registerTemporary(path_);
     }
-    Temporary(const Temporary&) = delete;
-    Temporary& operator=(const Temporary&) = delete;
-    ~Temporary() {
+    TemporaryOni(const TemporaryOni&) = delete;
+    TemporaryOni& operator=(const TemporaryOni&) = delete;
+    ~TemporaryOni() {
         if (path_.empty()) return;
         std::error_code ignored;
         fs::remove_all(path_, ignored);
+        unregisterTemporary(path_);
     }
     [[nodiscard]] const fs::path& path() const { return path_; }
     // Renames the temporary over `target`; it is then no longer removed.
@@ -54,6 +61,7 @@ public:
         if (ec)
             throw CaptureError("cannot rename " + path_.string() + " to " + target.string() + " (" +
                                ec.message() + "): check permissions on the folder");
+        unregisterTemporary(path_);
         path_.clear();
     }
 
@@ -61,14 +69,26 @@ private:
     fs::path path_;
 };
 
+// OpenNI2's recorder crashes on a path it cannot create: try creating it first, ourselves.
+void checkWritable(const fs::path& file, const fs::path& target) {
+    {
+        std::ofstream probe(file, std::ios::binary | std::ios::trunc);
+        if (!probe)
+            throw CaptureError("cannot write " + target.string() + " (" + std::strerror(errno) +
+                               "): check the folder exists and is writable");
+    }
+    std::error_code ignored;
+    fs::remove(file, ignored);
+}
+
 void createParentFolder(const fs::path& path) {
     const fs::path parent = path.parent_path();
     if (parent.empty()) return;
     std::error_code ec;
     fs::create_directories(parent, ec);
     if (ec)
-        throw CaptureError("cannot create folder " + parent.string() + " (" + ec.message() +
-                           "): check the path and permissions");
+        throw CaptureError("cannot create folder " + parent.string() + " for " + path.string() +
+                           " (" + ec.message() + "): check the path and permissions");
 }
 
 // Frames an .oni file says it holds, or -1 when it cannot be opened or does not say.
@@ -171,7 +191,8 @@ int recordingToOni(const fs::path& recordingFolder, const fs::path& oniPath,
     createParentFolder(oniPath);
     int written = -1;
     for (const auto startup : kRecorderStartups) {
-        Temporary tmp(oniPath, ".oni");
+        TemporaryOni tmp(oniPath);
+        checkWritable(tmp.path(), oniPath);
         written = recordOnce(uri, tmp.path(), info, startup, progress);
         if (written == info.frameCount) {
             tmp.commitTo(oniPath);
@@ -186,21 +207,15 @@ int recordingToOni(const fs::path& recordingFolder, const fs::path& oniPath,
 }
 
 int oniToRecording(const fs::path& oniPath, const fs::path& folder, const FrameProgress& progress) {
-    std::error_code ec;
-    const bool replacing = fs::exists(folder, ec);
-    if (replacing && !fs::is_directory(folder, ec))
-        throw CaptureError(folder.string() + " exists and is not a folder: choose another output");
-    if (replacing && !fs::is_empty(folder, ec) &&
-        !fs::is_regular_file(folder / "recording.json", ec))
-        throw CaptureError(folder.string() +
-                           " exists and is not a meadow recording: choose an empty or new folder");
-
+    if (const std::string why = whyNotReplaceableRecording(folder); !why.empty())
+        throw CaptureError("refusing to overwrite " + folder.string() + ": " + why +
+                           "; choose an empty or new folder");
     auto source = openOpenNiSource(oniPath.string());
-    createParentFolder(folder);
-    Temporary tmp(folder, "");
+    // Written beside the old recording and swapped in whole once complete.
+    StagedFolder staged(folder);
     int written = 0;
     {
-        RecordingWriter writer(tmp.path(), source->info());
+        RecordingWriter writer(staged.path(), source->info());
         while (auto frame = source->next()) {
             writer.write(frame->depth_mm);
             if (progress) progress(++written, source->info().frameCount);
@@ -210,14 +225,11 @@ int oniToRecording(const fs::path& oniPath, const fs::path& folder, const FrameP
         writer.finish();
         written = writer.framesWritten();
     }
-    if (replacing) {
-        // Only now, with the new recording complete, does the old one go.
-        fs::remove_all(folder, ec);
-        if (ec)
-            throw CaptureError("cannot replace " + folder.string() + " (" + ec.message() +
-                               "): check permissions on it and its parent folder");
+    try {
+        staged.commit();
+    } catch (const Error& e) {
+        throw CaptureError(e.what());
     }
-    tmp.commitTo(folder);
     return written;
 }
 

@@ -118,6 +118,10 @@ bool isRecordingJson(const fs::path& file) {
 
 RecordingInfo readRecordingInfo(const fs::path& folder) {
     std::error_code ec;
+    (void)fs::status(folder, ec);
+    if (ec == std::errc::too_many_symbolic_link_levels)
+        throw CaptureError(folder.string() +
+                           " is a loop of symbolic links: give the folder of a meadow recording");
     if (!fs::exists(folder, ec))
         throw CaptureError(folder.string() +
                            " does not exist: give the folder of a meadow recording");

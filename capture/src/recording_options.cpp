@@ -59,10 +59,8 @@ Intrinsics parseIntrinsics(const std::string& fx_fy_cx_cy) {
     k.fy_px = values[1];
     k.cx_px = values[2];
     k.cy_px = values[3];
-    // The size is not known yet (it is the first frame's); check the rest with a stand-in.
-    Intrinsics check = k;
-    check.width_px = check.height_px = 1;
-    if (const std::string problem = check.problem(); !problem.empty()) return fail(problem);
+    // The size is not known yet (it is the first frame's): what needs it is checked then.
+    if (const std::string problem = k.numbersProblem(); !problem.empty()) return fail(problem);
     k.width_px = k.height_px = 0;
     return k;
 }

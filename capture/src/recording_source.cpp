@@ -76,6 +76,11 @@ std::unique_ptr<DepthSource> openRecordingFolder(const fs::path& folder,
     std::error_code ec;
     for (int i = 0; i < info.frameCount; ++i) {
         fs::path file = framePath(folder, i);
+        if (fs::is_directory(file, ec))
+            throw CaptureError(file.string() +
+                               " is a folder, not a frame: remove it and record "
+                               "again, or fix frame_count in " +
+                               json.string());
         if (!fs::is_regular_file(file, ec))
             throw CaptureError(file.string() + " is missing but " + json.string() + " says " +
                                std::to_string(info.frameCount) +

@@ -21,34 +21,6 @@ bool isRecordingJsonName(const std::string& name) {
     return isFileOrItsTemporary(name, detail::kRecordingJsonName);
 }
 
-// Empty, or laid out like a recording (finished or not) and nothing else: safe to replace.
-bool isReplaceableRecording(const fs::path& folder, std::string& why) {
-    std::error_code ec;
-    for (fs::directory_iterator it(folder, ec), end; !ec && it != end; it.increment(ec)) {
-        const std::string name = it->path().filename().string();
-        if (name == detail::kDepthFolderName && it->is_directory(ec)) {
-            for (fs::directory_iterator f(it->path(), ec); !ec && f != end; f.increment(ec))
-                if (!isFrameFileName(f->path().filename().string())) {
-                    why = f->path().string() + " is not a recording frame";
-                    return false;
-                }
-        } else if (!isRecordingJsonName(name)) {
-            why = it->path().string() + " is not part of a recording";
-            return false;
-        }
-    }
-    if (ec) {
-        why = "it cannot be listed (" + ec.message() + ")";
-        return false;
-    }
-    const fs::path json = folder / detail::kRecordingJsonName;
-    if (fs::exists(json, ec) && !detail::isRecordingJson(json)) {
-        why = json.string() + " is not a meadow recording.json";
-        return false;
-    }
-    return true;
-}
-
 void writeAtomically(const fs::path& file, std::string_view bytes) {
     try {
         writeFileAtomically(file, bytes);
@@ -61,6 +33,28 @@ void writeAtomically(const fs::path& file, std::string_view bytes) {
 }
 
 }  // namespace
+
+std::string whyNotReplaceableRecording(const fs::path& folder, const OurEntry& alsoOurs) {
+    std::error_code ec;
+    const fs::file_status status = fs::status(folder, ec);
+    if (!fs::exists(status)) return {};
+    if (!fs::is_directory(status)) return folder.string() + " exists and is not a folder";
+    for (fs::directory_iterator it(folder, ec), end; !ec && it != end; it.increment(ec)) {
+        const std::string name = it->path().filename().string();
+        if (name == detail::kDepthFolderName && it->is_directory(ec)) {
+            for (fs::directory_iterator f(it->path(), ec); !ec && f != end; f.increment(ec))
+                if (!isFrameFileName(f->path().filename().string()))
+                    return f->path().string() + " is not a recording frame";
+        } else if (!isRecordingJsonName(name) && !(alsoOurs && alsoOurs(*it))) {
+            return it->path().string() + " is not part of a recording";
+        }
+    }
+    if (ec) return folder.string() + " cannot be listed (" + ec.message() + ")";
+    const fs::path json = folder / detail::kRecordingJsonName;
+    if (fs::exists(json, ec) && !detail::isRecordingJson(json))
+        return json.string() + " is not a meadow recording.json";
+    return {};
+}
 
 bool isFrameFileName(std::string_view name) {
     const std::size_t dot = name.find('.');
@@ -94,8 +88,7 @@ RecordingWriter::RecordingWriter(fs::path folder, RecordingInfo info)
         if (!fs::is_directory(status))
             throw CaptureError(folder.string() +
                                " exists and is not a folder: choose another recording folder");
-        std::string why;
-        if (!isReplaceableRecording(folder, why))
+        if (const std::string why = whyNotReplaceableRecording(folder); !why.empty())
             throw CaptureError("refusing to overwrite " + folder.string() +
                                ": it is not a meadow recording (" + why +
                                "); choose another folder or remove it first");

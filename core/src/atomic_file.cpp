@@ -1,28 +1,35 @@
 #include "meadow/core/atomic_file.h"
 
-#include <unistd.h>
-
+#include <cerrno>
+#include <cstring>
 #include <system_error>
 
 #include "meadow/core/error.h"
+#include "meadow/core/temporaries.h"
 
 namespace meadow {
 
 namespace fs = std::filesystem;
 
-AtomicFile::AtomicFile(fs::path path) : path_(std::move(path)) {
-    tmp_ = path_;
-    tmp_ += ".tmp." + std::to_string(::getpid());
+AtomicFile::AtomicFile(fs::path path) : path_(std::move(path)), tmp_(temporaryFor(path_)) {
+    std::error_code ec;
     if (path_.has_parent_path()) {
-        std::error_code ec;
         fs::create_directories(path_.parent_path(), ec);
         if (ec)
-            throw Error("cannot create folder " + path_.parent_path().string() + ": " +
-                        ec.message());
+            throw Error("cannot create folder " + path_.parent_path().string() + " for " +
+                        path_.filename().string() + ": " + ec.message());
     }
+    if (fs::is_directory(path_, ec))
+        throw Error("cannot write " + path_.string() + ": it is a folder; choose a file name");
+    sweepStaleTemporaries(path_);
+    registerTemporary(tmp_);
     out_.open(tmp_, std::ios::binary | std::ios::trunc);
-    if (!out_)
-        throw Error("cannot write " + tmp_.string() + ": check the folder exists and is writable");
+    if (!out_) {
+        const int error = errno;
+        unregisterTemporary(tmp_);
+        throw Error("cannot write " + path_.string() + " (" + std::strerror(error) +
+                    "): check the folder exists and is writable");
+    }
 }
 
 AtomicFile::~AtomicFile() {
@@ -30,6 +37,7 @@ AtomicFile::~AtomicFile() {
         out_.close();
         std::error_code ignored;
         fs::remove(tmp_, ignored);
+        unregisterTemporary(tmp_);
     }
 }
 
@@ -43,16 +51,12 @@ void AtomicFile::commit() {
     if (ec)
         throw Error("cannot rename " + tmp_.string() + " to " + path_.string() + ": " +
                     ec.message());
+    unregisterTemporary(tmp_);
     committed_ = true;
 }
 
-bool isFileOrItsTemporary(std::string_view name, std::string_view fileName) {
-    if (name.substr(0, fileName.size()) != fileName) return false;
-    const std::string_view rest = name.substr(fileName.size());
-    constexpr std::string_view kTmp = ".tmp.";  // AtomicFile's suffix, then the pid
-    if (rest.empty()) return true;
-    if (rest.substr(0, kTmp.size()) != kTmp || rest.size() == kTmp.size()) return false;
-    return rest.substr(kTmp.size()).find_first_not_of("0123456789") == std::string_view::npos;
+void checkWritable(const fs::path& path) {
+    const AtomicFile probe(path);  // creates and, uncommitted, removes its temporary
 }
 
 void writeFileAtomically(const fs::path& path, std::string_view bytes) {

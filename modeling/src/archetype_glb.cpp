@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cstring>
+#include <fstream>
 #include <nlohmann/json.hpp>
 #include <sstream>
 
@@ -162,6 +163,17 @@ std::string archetypeGlbBytes(const ArchetypeLibrary& library, const GlbExportOp
 void exportArchetypeGlb(const ArchetypeLibrary& library, const std::filesystem::path& glbPath,
                         const GlbExportOptions& options) {
     writeFileAtomically(glbPath, archetypeGlbBytes(library, options));
+}
+
+bool isMeadowGlb(const std::filesystem::path& path) {
+    // The 12-byte header, the JSON chunk's header, then the JSON: its asset block comes first
+    // in what tinygltf writes, so the generator lies within the first few hundred bytes.
+    constexpr std::size_t kLookedAt = 4096;
+    std::ifstream in(path, std::ios::binary);
+    std::string head(kLookedAt, '\0');
+    in.read(head.data(), static_cast<std::streamsize>(head.size()));
+    head.resize(static_cast<std::size_t>(in.gcount()));
+    return head.rfind("glTF", 0) == 0 && head.find("\"generator\":\"meadow") != std::string::npos;
 }
 
 }  // namespace meadow::modeling

@@ -1,5 +1,7 @@
 #include "archetype_json.h"
 
+#include <algorithm>
+#include <cmath>
 #include <limits>
 #include <optional>
 
@@ -13,6 +15,9 @@ namespace {
 
 // Frame numbers, blade ids and point counts are ints.
 constexpr int kMaxCount = std::numeric_limits<int>::max();
+// No blade of grass, nor a bamboo leaf, reaches this far from its root: a larger control point
+// or width is another unit or a corrupt file.
+constexpr float kMaxBladeExtent_m = 10.f;
 
 json vec3ToJson(const glm::vec3& v) { return json::array({v.x, v.y, v.z}); }
 
@@ -58,13 +63,21 @@ Archetype archetypeFromJson(const json& value, const std::string& path) {
     a.name = r.string("name");
     const JsonReader spine = r.object("spine_m");
     a.spine_m = {spine.vec3("v0"), spine.vec3("v1"), spine.vec3("v2")};
+    for (const char* v : {"v0", "v1", "v2"}) {
+        const glm::vec3 p = spine.vec3(v);
+        if (std::max({std::abs(p.x), std::abs(p.y), std::abs(p.z)}) > kMaxBladeExtent_m)
+            spine.fail(v, "lies more than " + std::to_string(static_cast<int>(kMaxBladeExtent_m)) +
+                              " m from the blade's root: control points are in metres");
+    }
     if (a.height_m() <= 0.f) r.fail("spine_m", "has zero length");
     a.width.width_m = r.floatArray("width_m");
     if (a.width.width_m.size() < 2) r.fail("width_m", "needs at least 2 samples");
     for (std::size_t i = 0; i < a.width.width_m.size(); ++i)
-        if (a.width.width_m[i] < 0.f)
+        if (a.width.width_m[i] < 0.f || a.width.width_m[i] > kMaxBladeExtent_m)
             throw JsonError(JsonError::Kind::Field, elementPath(r.pathOf("width_m"), i),
-                            "is negative");
+                            a.width.width_m[i] < 0.f ? "is negative"
+                                                     : "is wider than any blade: widths are in "
+                                                       "metres");
     if (a.width.maxWidth_m() <= 0.f) r.fail("width_m", "is zero everywhere");
     const std::string shape = r.string("nearest_shape", "quadratic");
     const std::optional<AnalyticShape> nearest = kAnalyticShapeNames.parse(shape);

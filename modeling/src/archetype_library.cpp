@@ -65,6 +65,17 @@ std::string serialiseArchetypeLibrary(const ArchetypeLibrary& lib) {
     return doc.dump(2) + "\n";
 }
 
+bool isArchetypeLibraryFile(const std::filesystem::path& path) {
+    try {
+        const json doc = parseJsonObject(readTextFile(path));
+        const auto format = doc.find("format");
+        return format != doc.end() && format->is_string() &&
+               format->get<std::string>() == kArchetypeLibraryFormat;
+    } catch (const std::exception&) {
+        return false;
+    }
+}
+
 ArchetypeLibrary loadArchetypeLibrary(const std::filesystem::path& path) {
     std::string text;
     try {

@@ -83,6 +83,8 @@ CaptureResult captureArchetypes(capture::DepthSource& source, const std::string&
     while (total <= 0 || summary.framesRead < total) {
         std::optional<capture::DepthFrame> frame = source.next();
         if (!frame) break;
+        if (const std::string why = capture::implausibleDepthProblem(*frame); !why.empty())
+            throw ModelingError("capture: " + sourceName + " " + why);
         ++summary.framesRead;
         observe(groups.add(std::move(*frame)));
         if (progress) progress(summary.framesRead, std::max(total, summary.framesRead));

@@ -5,6 +5,7 @@
 #include <string>
 
 #include "culling_reference.h"
+#include "gl/dispatch.h"
 
 namespace meadow::runtime {
 
@@ -13,7 +14,7 @@ gl::ProgramSource cullProgramSource() {
     return {.label = "blade culling",
             .stages = {{GL_COMPUTE_SHADER, "cull.comp"}},
             .commonFiles = {"shared/physics_params.h", "shared/cull_params.h",
-                            "common_physics.glsl", "common_culling.glsl"},
+                            "common_dispatch.glsl", "common_physics.glsl", "common_culling.glsl"},
             .defines = {}};
 }
 }  // namespace
@@ -74,7 +75,7 @@ void CullingPass::dispatch(const gl::Buffer& blades, std::uint32_t bladeCount,
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, DRAW_COMMAND_SSBO_BINDING, targets.drawCommand.id());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, CULL_STATS_SSBO_BINDING, targets.stats.id());
     glBindTextureUnit(CULL_DEPTH_TEXTURE_UNIT, depth ? depth->texture.id() : 0);
-    glDispatchCompute(patchCount, 1, 1);
+    gl::dispatchGroups(patchCount);
     // The draw reads the command (indirect) and the indices (SSBO); tests read back.
     glMemoryBarrier(GL_COMMAND_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT |
                     GL_BUFFER_UPDATE_BARRIER_BIT);

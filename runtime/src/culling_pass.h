@@ -8,11 +8,11 @@
 #include <glm/mat4x4.hpp>
 #include <glm/vec3.hpp>
 
-#include "shared/blade_types.h"
 #include "gl/gl_object.h"
 #include "gl/shader_program.h"
 #include "meadow/runtime/culling.h"
 #include "meadow/runtime/gl_context.h"
+#include "shared/blade_types.h"
 
 namespace meadow::runtime {
 

@@ -9,8 +9,8 @@
 #include <span>
 #include <vector>
 
-#include "shared/cull_params.h"
 #include "meadow/runtime/culling.h"
+#include "shared/cull_params.h"
 
 namespace meadow::runtime {
 

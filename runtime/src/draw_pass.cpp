@@ -1,8 +1,10 @@
 #include "draw_pass.h"
 
+#include <cstdio>
 #include <opencv2/imgproc.hpp>
 #include <string>
 
+#include "gl/dispatch.h"
 #include "meadow/runtime/error.h"
 
 namespace meadow::runtime {
@@ -23,7 +25,7 @@ gl::ShaderProgram makeOpaqueProgram() {
 gl::ShaderProgram makeChunkProgram() {
     return gl::ShaderProgram({.label = "blade draw chunks",
                               .stages = {{GL_COMPUTE_SHADER, "blade_chunks.comp"}},
-                              .commonFiles = {},
+                              .commonFiles = {"common_dispatch.glsl"},
                               .defines = {}});
 }
 
@@ -40,10 +42,13 @@ gl::ShaderProgram makeBladeProgram() {
 
 void checkComplete(const gl::Framebuffer& fb, const char* what) {
     const GLenum status = glCheckNamedFramebufferStatus(fb.id(), GL_FRAMEBUFFER);
-    if (status != GL_FRAMEBUFFER_COMPLETE)
+    if (status != GL_FRAMEBUFFER_COMPLETE) {
+        char hex[16];
+        std::snprintf(hex, sizeof hex, "0x%X", status);
         throw RuntimeError(std::string("meadow::runtime: the ") + what +
-                           " framebuffer is incomplete (status 0x" + std::to_string(status) +
+                           " framebuffer is incomplete (status " + hex +
                            "); lower render.msaa_samples or render.size_px");
+    }
 }
 
 }  // namespace
@@ -171,7 +176,7 @@ void DrawPass::drawBlades(const SceneGpu& gpu, const SceneDescription& scene,
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, DRAW_CHUNK_SSBO_BINDING, chunks_.id());
     chunkProgram_.use();
     chunkProgram_.set("uChunkCount", static_cast<unsigned>(chunkCount));
-    glDispatchCompute((chunkCount + BLADE_WORKGROUP_SIZE - 1) / BLADE_WORKGROUP_SIZE, 1, 1);
+    gl::dispatchGroups((chunkCount + BLADE_WORKGROUP_SIZE - 1) / BLADE_WORKGROUP_SIZE);
     glMemoryBarrier(GL_COMMAND_BARRIER_BIT);
     bladeProgram_.use();
     glBindBuffer(GL_DRAW_INDIRECT_BUFFER, chunks_.id());

@@ -7,9 +7,9 @@
 #include <array>
 #include <cstddef>
 
-#include "shared/blade_types.h"
 #include "gl/gl_object.h"
 #include "meadow/runtime/renderer.h"
+#include "shared/blade_types.h"
 
 namespace meadow::runtime {
 

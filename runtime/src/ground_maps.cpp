@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <opencv2/imgcodecs.hpp>
 
+#include "meadow/core/library_messages.h"
 #include "meadow/runtime/error.h"
 
 namespace meadow::runtime {
@@ -19,6 +20,7 @@ cv::Point texelAt(const GroundImage& extent, cv::Size size, glm::vec3 p_m) {
 
 namespace {
 cv::Mat readDensityImage(const DensityMap& map) {
+    const CapturedStderr quiet;  // libpng's words on a corrupt image: the error below says it
     return cv::imread(map.image.string(), cv::IMREAD_GRAYSCALE | cv::IMREAD_ANYDEPTH);
 }
 std::string unreadableDensityMap(const DensityMap& map) {
@@ -46,7 +48,11 @@ ArchetypeMapImage readArchetypeMap(const ArchetypeMap& map, std::size_t archetyp
                                std::to_string(kArchetypeByWeights) + ": by weights)";
     // IMREAD_UNCHANGED: a 16-bit or colour image is an error, not something to convert, because
     // converting would silently turn indices into other indices.
-    const cv::Mat image = cv::imread(map.image.string(), cv::IMREAD_UNCHANGED);
+    cv::Mat image;
+    {
+        const CapturedStderr quiet;  // libpng's words on a corrupt image: the error says it
+        image = cv::imread(map.image.string(), cv::IMREAD_UNCHANGED);
+    }
     if (image.empty()) return {{}, name + " is not a readable image; " + wanted};
     if (image.depth() != CV_8U || image.channels() != 1) {
         const int bits = image.depth() == CV_16U ? 16 : image.depth() == CV_8U ? 8 : 32;

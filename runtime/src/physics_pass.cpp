@@ -1,15 +1,17 @@
 #include "physics_pass.h"
 
+#include "gl/dispatch.h"
 #include "physics_reference.h"
 
 namespace meadow::runtime {
 
 namespace {
 gl::ProgramSource physicsProgramSource() {
-    return {.label = "blade physics",
-            .stages = {{GL_COMPUTE_SHADER, "physics.comp"}},
-            .commonFiles = {"shared/physics_params.h", "common_physics.glsl"},
-            .defines = {}};
+    return {
+        .label = "blade physics",
+        .stages = {{GL_COMPUTE_SHADER, "physics.comp"}},
+        .commonFiles = {"shared/physics_params.h", "common_dispatch.glsl", "common_physics.glsl"},
+        .defines = {}};
 }
 }  // namespace
 
@@ -50,7 +52,7 @@ void PhysicsPass::dispatch(const gl::Buffer& blades, const gl::Buffer& rests,
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BLADE_SSBO_BINDING, blades.id());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BLADE_REST_SSBO_BINDING, rests.id());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, COLLIDER_SSBO_BINDING, colliders_.id());
-    glDispatchCompute((bladeCount + BLADE_WORKGROUP_SIZE - 1) / BLADE_WORKGROUP_SIZE, 1, 1);
+    gl::dispatchGroups((bladeCount + BLADE_WORKGROUP_SIZE - 1) / BLADE_WORKGROUP_SIZE);
     // Culling reads the blades as SSBOs, the draw pass in its shaders, tests by read-back.
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
     context_.checkErrors("PhysicsPass::dispatch");

@@ -7,8 +7,8 @@
 #include <span>
 #include <vector>
 
-#include "shared/physics_params.h"
 #include "meadow/runtime/physics.h"
+#include "shared/physics_params.h"
 
 namespace meadow::runtime {
 

@@ -2,10 +2,10 @@
 // The interface of the per-frame compute passes (physics, culling) the renderer runs between
 // the depth pre-pass and the blade draw. All buffers of SceneGpu are bound at their blade_types.h
 // binding points when run() is called.
-#include "shared/blade_types.h"
 #include "gl/gl_object.h"
 #include "meadow/runtime/scene.h"
 #include "scene_gpu.h"
+#include "shared/blade_types.h"
 
 namespace meadow::runtime {
 

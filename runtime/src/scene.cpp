@@ -11,6 +11,7 @@
 #include "meadow/core/json_reader.h"
 #include "meadow/modeling/archetype_library.h"
 #include "meadow/runtime/error.h"
+#include "short_number.h"
 
 namespace meadow::runtime {
 namespace {
@@ -26,6 +27,19 @@ fs::path sceneFilePath(const JsonReader& r, std::string_view key, const fs::path
     if (p.is_relative()) p = origin.parent_path() / p;
     std::error_code ec;
     if (!fs::exists(p, ec)) r.fail(key, "file " + p.string() + " does not exist");
+    return p;
+}
+
+// Scenes are metres across a meadow, up to a landscape: a position farther out is a unit or
+// typing mistake (and single-precision positions that far apart are millimetres coarse).
+constexpr float kMaxSceneExtent_m = 1e5f;
+
+glm::vec3 position(const JsonReader& r, std::string_view key, glm::vec3 fallback) {
+    const glm::vec3 p = r.vec3(key, fallback);
+    for (int i = 0; i < 3; ++i)
+        if (std::abs(p[i]) > kMaxSceneExtent_m)
+            r.fail(key, "lies " + shortNumber(std::abs(p[i])) + " m from the origin, beyond " +
+                            shortNumber(kMaxSceneExtent_m) + " m: positions are in metres");
     return p;
 }
 
@@ -155,16 +169,16 @@ void readCamera(const JsonReader& c, CameraDescription& cam) {
         for (std::size_t i = 0; i < path.size(); ++i) {
             const JsonReader k(path[i], elementPath(c.pathOf("path"), i));
             k.onlyKeys({"time_s", "position_m", "target_m"});
-            CameraKey key{k.floatNumber("time_s", 0.f, 0.f, 1e6f), k.vec3("position_m", {}),
-                          k.vec3("target_m", {})};
+            CameraKey key{k.floatNumber("time_s", 0.f, 0.f, 1e6f), position(k, "position_m", {}),
+                          position(k, "target_m", {})};
             if (!cam.path.empty() && !(key.time_s > cam.path.back().time_s))
                 k.fail("time_s", "keys must be in increasing time");
             cam.path.push_back(key);
         }
     } else {
         const CameraKey fallback;
-        cam.path.push_back({0.f, c.vec3("position_m", fallback.position_m),
-                            c.vec3("target_m", fallback.target_m)});
+        cam.path.push_back({0.f, position(c, "position_m", fallback.position_m),
+                            position(c, "target_m", fallback.target_m)});
     }
     for (const CameraKey& k : cam.path)
         if (k.position_m == k.target_m) c.fail("", "position_m and target_m must differ");
@@ -191,7 +205,7 @@ void readWind(const JsonReader& w, WindDescription& wind) {
         w.floatNumber("wave_amplitude_m_s", wind.waveAmplitude_m_s, 0.f, 1000.f);
     wind.wavelength_m = w.floatNumber("wavelength_m", wind.wavelength_m, 1e-3f, 1e6f);
     wind.frequency_hz = w.floatNumber("frequency_hz", wind.frequency_hz, 0.f, 100.f);
-    wind.source_m = w.vec3("source_m", wind.source_m);
+    wind.source_m = position(w, "source_m", wind.source_m);
     wind.sourceAmplitude_m_s =
         w.floatNumber("source_amplitude_m_s", wind.sourceAmplitude_m_s, 0.f, 1000.f);
     wind.sourceRadius_m = w.floatNumber("source_radius_m", wind.sourceRadius_m, 1e-3f, 1e6f);
@@ -203,7 +217,8 @@ void readColliders(const JsonReader& root, std::vector<ColliderDescription>& col
     for (std::size_t i = 0; i < list.size(); ++i) {
         const JsonReader k(list[i], elementPath("colliders", i));
         k.onlyKeys({"center_m", "radius_m", "velocity_m_s"});
-        colliders.push_back({k.vec3("center_m", {}), k.floatNumber("radius_m", 0.2f, 1e-4f, 1e4f),
+        colliders.push_back({position(k, "center_m", {}),
+                             k.floatNumber("radius_m", 0.2f, 1e-4f, 1e4f),
                              k.vec3("velocity_m_s", {})});
     }
 }

@@ -67,7 +67,12 @@ SceneBlades buildSceneBlades(const SceneDescription& scene) {
         input.archetypeMapExtent = *scene.archetypeMap;
     }
     input.countMultiple = out.patchSize;
-    std::vector<SeededBlade> seeds = seedBlades(input);
+    std::vector<SeededBlade> seeds;
+    try {
+        seeds = seedBlades(input);
+    } catch (const RuntimeError& e) {
+        throw RuntimeError(scene.file.string() + ": " + e.what());  // which scene asked for it
+    }
 
     std::vector<glm::vec3> roots;
     std::vector<float> reach;

@@ -5,11 +5,11 @@
 #include <cstdint>
 #include <vector>
 
-#include "shared/blade_types.h"
 #include "gl/gl_object.h"
 #include "meadow/runtime/scene.h"
 #include "scene_mesh.h"
 #include "seeding.h"
+#include "shared/blade_types.h"
 
 namespace meadow::runtime {
 

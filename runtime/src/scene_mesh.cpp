@@ -8,6 +8,7 @@
 #include <glm/gtc/type_ptr.hpp>
 #include <glm/mat4x4.hpp>
 
+#include "meadow/core/library_messages.h"
 #include "meadow/runtime/error.h"
 
 namespace meadow::runtime {
@@ -144,7 +145,7 @@ TriangleMesh loadGltfTriangles(const std::filesystem::path& file) {
     const bool binary = file.extension() == ".glb";
     const bool ok = binary ? loader.LoadBinaryFromFile(&model, &error, &warning, file.string())
                            : loader.LoadASCIIFromFile(&model, &error, &warning, file.string());
-    if (!ok) fail(file, "not a readable glTF 2.0 file (" + error + ")");
+    if (!ok) fail(file, "not a readable glTF 2.0 file (" + oneLine(error) + ")");
     TriangleMesh mesh;
     mesh.origin = file.string();
     const int sceneIndex = model.defaultScene >= 0 ? model.defaultScene : 0;
@@ -156,6 +157,13 @@ TriangleMesh loadGltfTriangles(const std::filesystem::path& file) {
             appendNode(model, n, glm::mat4(1.f), mesh, file, 0);
     }
     if (mesh.triangles.empty()) fail(file, "holds no triangles");
+    // A mesh in other units (millimetres, or garbage) would plant a meadow kilometres wide.
+    constexpr float kMaxExtent_m = 1e5f;
+    for (const glm::vec3& p : mesh.positions_m)
+        if (!(std::abs(p.x) <= kMaxExtent_m && std::abs(p.y) <= kMaxExtent_m &&
+              std::abs(p.z) <= kMaxExtent_m))
+            fail(file, "has a vertex " + std::to_string(glm::length(p)) +
+                           " m from the origin, beyond 1e5 m: glTF positions are in metres");
     // Area-weighted vertex normals where the file gave none (the cross product's length is twice
     // the area, so summing unnormalised face normals weights by area).
     std::vector<glm::vec3> computed(mesh.positions_m.size(), glm::vec3(0.f));

@@ -1,5 +1,7 @@
 #include "seeding.h"
 
+#include <unistd.h>
+
 #include <algorithm>
 #include <cmath>
 #include <glm/geometric.hpp>
@@ -121,6 +123,34 @@ float densityAt(const cv::Mat& map, const DensityMap& extent, glm::vec3 p) {
     return map.at<float>(texel.y, texel.x);
 }
 
+// What one blade costs on its way to the GPU: its seed here, its state and rest pose there, and a
+// slot in the visible-index buffer.
+constexpr double kBytesPerBlade =
+    sizeof(SeededBlade) + sizeof(gpu::BladeGpu) + sizeof(gpu::BladeRestGpu) + sizeof(std::uint32_t);
+// Share of the machine's memory a scene's blades may take.
+constexpr double kMemoryShare = 0.5;
+
+std::string shortBytes(double bytes) {
+    const char* units[] = {"B", "KB", "MB", "GB", "TB", "PB", "EB"};
+    int u = 0;
+    while (bytes >= 1024.0 && u < 6) bytes /= 1024.0, ++u;
+    return shortNumber(static_cast<float>(bytes)) + " " + units[u];
+}
+
+// Refuses, before anything is allocated, a scene whose blades would not fit in memory.
+void checkBladeMemory(float density_per_m2, double area_m2) {
+    const double blades = static_cast<double>(density_per_m2) * area_m2;
+    const double needed = blades * kBytesPerBlade;
+    const double available = static_cast<double>(::sysconf(_SC_PHYS_PAGES)) *
+                             static_cast<double>(::sysconf(_SC_PAGESIZE));
+    if (needed <= kMemoryShare * available) return;
+    throw RuntimeError("blades.density_per_m2 " + shortNumber(density_per_m2) + " over " +
+                       shortNumber(static_cast<float>(area_m2)) + " m^2 of grass asks for " +
+                       shortNumber(static_cast<float>(blades)) + " blades, about " +
+                       shortBytes(needed) + " of memory: more than half of this machine's " +
+                       shortBytes(available) + "; lower the density or the grass area");
+}
+
 }  // namespace
 
 glm::vec3 bladeWidthDirection(glm::vec3 up, float directionAngle_rad) {
@@ -145,6 +175,7 @@ std::vector<SeededBlade> seedBlades(const SeedingInput& in) {
     std::partial_sum(in.archetypeWeights->begin(), in.archetypeWeights->end(),
                      cumulativeWeights.begin());
 
+    checkBladeMemory(p.density_per_m2, sampler.area_m2());
     Rng random(p.seed);
     const auto wanted =
         static_cast<std::size_t>(std::llround(p.density_per_m2 * sampler.area_m2()));

@@ -9,10 +9,10 @@
 #include <opencv2/core/mat.hpp>
 #include <vector>
 
-#include "shared/blade_types.h"
 #include "meadow/modeling/archetype.h"
 #include "meadow/runtime/scene.h"
 #include "scene_mesh.h"
+#include "shared/blade_types.h"
 
 namespace meadow::runtime {
 

@@ -13,6 +13,7 @@
 #include "meadow/core/atomic_file.h"
 #include "meadow/core/json_reader.h"
 #include "meadow/core/random.h"
+#include "meadow/core/staged_folder.h"
 #include "meadow/synth/error.h"
 #include "meadow/synth/simulated_sensor.h"
 
@@ -81,42 +82,30 @@ json intrinsicsJson(const capture::Intrinsics& k) {
             {"fy_px", tidy(k.fy_px)}, {"cx_px", tidy(k.cx_px)},   {"cy_px", tidy(k.cy_px)}};
 }
 
-// Names the truth folder may hold, so clearing it never deletes anything else.
-bool isTruthFolder(const fs::path& folder) {
+// The first entry of a truth folder that meadow synth did not write ("" for none), so replacing
+// it never deletes anything else.
+std::string foreignTruthEntry(const fs::path& folder) {
     std::error_code ec;
     for (fs::directory_iterator it(folder, ec), end; !ec && it != end; it.increment(ec)) {
         const std::string name = it->path().filename().string();
         if (name == kLabelsFolderName && it->is_directory(ec)) {
             for (fs::directory_iterator f(it->path(), ec); !ec && f != end; f.increment(ec))
-                if (!capture::isFrameFileName(f->path().filename().string())) return false;
+                if (!capture::isFrameFileName(f->path().filename().string()))
+                    return f->path().string();
         } else if (!isFileOrItsTemporary(name, kTruthFileName)) {
-            return false;
+            return it->path().string();
         }
     }
-    return !ec;
+    return ec ? folder.string() : std::string();
 }
 
-// A previous synth run left OUT/truth beside the recording; RecordingWriter only accepts a
-// folder holding a recording, so the old truth goes first, if it is only truth.
-void clearOldTruth(const fs::path& out) {
-    const fs::path truth = out / kTruthFolderName;
+bool isTruthFolder(const fs::path& folder) { return foreignTruthEntry(folder).empty(); }
+
+// The truth a previous synth run left beside its recording belongs to the recording it replaces.
+bool isOldTruth(const fs::directory_entry& entry) {
     std::error_code ec;
-    if (!fs::exists(truth, ec)) return;
-    // Only beside a recording: in any other folder RecordingWriter refuses, and the truth stays.
-    for (fs::directory_iterator it(out, ec), end; !ec && it != end; it.increment(ec)) {
-        const std::string name = it->path().filename().string();
-        if (name != "depth" && name != kTruthFolderName &&
-            !isFileOrItsTemporary(name, "recording.json"))
-            return;
-    }
-    if (!fs::is_directory(truth, ec) || !isTruthFolder(truth))
-        throw SynthError("refusing to overwrite " + truth.string() +
-                         ": it holds files meadow synth did not write; choose another "
-                         "--out folder or remove it first");
-    fs::remove_all(truth, ec);
-    if (ec)
-        throw SynthError("cannot clear the old truth in " + truth.string() + ": " + ec.message() +
-                         "; check permissions or remove it by hand");
+    return entry.path().filename() == kTruthFolderName && entry.is_directory(ec) &&
+           isTruthFolder(entry.path());
 }
 
 void writeLabels(const fs::path& file, const cv::Mat1w& labels) {
@@ -307,13 +296,28 @@ SynthTruth synthesize(const SynthOptions& options,
     truth.intrinsics = spec.camera.intrinsics;
     truth.cameraFromWorld = spec.camera.cameraFromWorld();
 
-    clearOldTruth(options.out);
+    // The new recording and its truth are written beside the old ones and replace them whole
+    // when complete: a run that fails or is interrupted leaves the old ones as they were.
+    std::error_code ec;
+    if (fs::is_directory(options.out / kTruthFolderName, ec))
+        if (const std::string foreign = foreignTruthEntry(options.out / kTruthFolderName);
+            !foreign.empty())
+            throw SynthError("refusing to overwrite " + options.out.string() +
+                             ": its truth holds " + foreign +
+                             ", which meadow synth did not write; choose another --out "
+                             "folder or remove it first");
+    if (const std::string why = capture::whyNotReplaceableRecording(options.out, isOldTruth);
+        !why.empty())
+        throw SynthError("refusing to overwrite " + options.out.string() +
+                         ": it is not a meadow recording (" + why +
+                         "); choose another --out folder or remove it first");
+    StagedFolder staged(options.out);
     capture::RecordingInfo info;
     info.sensor = "meadow synth (simulated Kinect v1, preset " + preset->name + ")";
     info.intrinsics = spec.camera.intrinsics;
     info.frameRate_hz = kSynthFrameRate_hz;
-    capture::RecordingWriter writer(options.out, info);
-    const fs::path truthFolder = options.out / kTruthFolderName;
+    capture::RecordingWriter writer(staged.path(), info);
+    const fs::path truthFolder = staged.path() / kTruthFolderName;
 
     TuftSpec frameSpec = spec;
     frameSpec.wind.frameRate_hz = static_cast<float>(kSynthFrameRate_hz);
@@ -329,6 +333,7 @@ SynthTruth synthesize(const SynthOptions& options,
     }
     writeFileAtomically(truthFolder / kTruthFileName, synthTruthToJson(truth));
     writer.finish();
+    staged.commit();
     return truth;
 }
 

@@ -19,7 +19,7 @@
 #include "meadow/runtime/gl_context.h"
 #include "meadow/runtime/physics.h"
 #include "meadow/runtime/renderer.h"
-#include "runtime/scene_test_helpers.h"
+#include "support/scene_files.h"
 
 namespace meadow::runtime {
 namespace {

@@ -83,8 +83,17 @@ std::vector<DepthFrame> readAll(DepthSource& source) {
     return frames;
 }
 
-SourceOptions plainOptions(DepthUnit unit) {
-    return {.intrinsics = parseIntrinsics("525,525,319.5,239.5"), .depthUnit = unit};
+// --intrinsics for a plain folder: TUM RGB-D's camera for its 640 x 480 frames, and a camera of
+// the same field of view for the tests' tiny frames (a 525 px focal length across 2 px is no
+// camera's).
+SourceOptions plainOptions(DepthUnit unit, int width_px = 640, int height_px = 480) {
+    const float f_px = 525.f * static_cast<float>(width_px) / 640.f;
+    Intrinsics k;
+    k.fx_px = k.fy_px = f_px;
+    k.cx_px = 0.5f * static_cast<float>(width_px - 1);
+    k.cy_px = 0.5f * static_cast<float>(height_px - 1);
+    k.width_px = k.height_px = 0;  // as parseIntrinsics leaves them: the first frame's
+    return {.intrinsics = k, .depthUnit = unit};
 }
 
 }  // namespace
@@ -281,11 +290,13 @@ TEST(RecordingPlainFolder, FifthMillimetreUnitsAreConvertedToMillimetres) {
     for (std::size_t i = 0; i < cases.size(); ++i) stored(0, static_cast<int>(i)) = cases[i].first;
     ASSERT_TRUE(cv::imwrite((folder / "frame.png").string(), stored));
 
-    const auto source = openDepthSource(folder.string(), plainOptions(DepthUnit::FifthMillimetre));
+    const SourceOptions options =
+        plainOptions(DepthUnit::FifthMillimetre, static_cast<int>(cases.size()), 1);
+    const auto source = openDepthSource(folder.string(), options);
     EXPECT_EQ(source->info().intrinsics.width_px, static_cast<int>(cases.size()))
         << "width comes from the first frame";
     EXPECT_EQ(source->info().intrinsics.height_px, 1);
-    EXPECT_EQ(source->info().intrinsics.fx_px, 525.f);
+    EXPECT_EQ(source->info().intrinsics.fx_px, options.intrinsics->fx_px);
     const auto frame = source->next();
     ASSERT_TRUE(frame.has_value());
     for (std::size_t i = 0; i < cases.size(); ++i)
@@ -298,7 +309,7 @@ TEST(RecordingPlainFolder, MetreUnitsAreConvertedAndOutOfRangeBecomesNoReading) 
     const fs::path folder = freshDir("metre");
     cv::Mat1w stored = (cv::Mat1w(1, 5) << 0, 1, 2, 65, 66);
     ASSERT_TRUE(cv::imwrite((folder / "a.png").string(), stored));
-    const auto source = openDepthSource(folder.string(), plainOptions(DepthUnit::Metre));
+    const auto source = openDepthSource(folder.string(), plainOptions(DepthUnit::Metre, 5, 1));
     const cv::Mat1w expected = (cv::Mat1w(1, 5) << 0, 1000, 2000, 65000, 0);
     EXPECT_TRUE(identical(source->next()->depth_mm, expected));
 }
@@ -309,7 +320,7 @@ TEST(RecordingPlainFolder, FramesComeInNameOrderAndOtherFilesAreIgnored) {
         ASSERT_TRUE(cv::imwrite((folder / ("frame_" + std::to_string(value) + ".png")).string(),
                                 cv::Mat1w(2, 2, static_cast<std::uint16_t>(value))));
     std::ofstream(folder / "notes.txt") << "not a frame";
-    const auto source = openDepthSource(folder.string(), plainOptions(DepthUnit::Millimetre));
+    const auto source = openDepthSource(folder.string(), plainOptions(DepthUnit::Millimetre, 2, 2));
     EXPECT_EQ(source->info().frameCount, 3);
     const std::vector<DepthFrame> frames = readAll(*source);
     ASSERT_EQ(frames.size(), 3u);

@@ -14,6 +14,17 @@ using meadow::test::runMeadow;
 
 namespace {
 
+// A library as a previous capture left it.
+std::string previousLibraryText() {
+    meadow::modeling::Archetype a;
+    a.name = "previous";
+    a.spine_m = {{0, 0, 0}, {0, 0.05f, 0}, {0.01f, 0.1f, 0}};
+    a.width.width_m = {0.01f, 0.005f};
+    meadow::modeling::ArchetypeLibrary library;
+    library.archetypes.push_back(a);
+    return meadow::modeling::serialiseArchetypeLibrary(library);
+}
+
 // A recording of frames that all read "no data": a valid recording with nothing in it.
 fs::path writeAllZeroRecording(const fs::path& dir, int frames = 2) {
     meadow::capture::RecordingInfo info;
@@ -94,13 +105,14 @@ TEST(CaptureCli, MissingSourceIsOneClearLineAndANonZeroExit) {
 TEST(CaptureCli, AllZeroFramesSayNoBladesAndKeepThePreviousLibrary) {
     const fs::path dir = freshTempDir("capture_zero");
     const fs::path rec = writeAllZeroRecording(dir / "rec");
-    { std::ofstream(dir / "lib.json") << "previous library"; }
+    const std::string previous = previousLibraryText();
+    { std::ofstream(dir / "lib.json") << previous; }
     const auto r = runMeadow("capture " + rec.string() + " --out " + (dir / "lib.json").string());
     EXPECT_EQ(r.exitCode, 2) << r.output;
     EXPECT_NE(r.output.find("no blade"), std::string::npos) << r.output;
     std::ifstream in(dir / "lib.json");
     std::string kept((std::istreambuf_iterator<char>(in)), {});
-    EXPECT_EQ(kept, "previous library") << "a failed capture must not touch an existing library";
+    EXPECT_EQ(kept, previous) << "a failed capture must not touch an existing library";
 }
 
 // A long recording with nothing to model: the message counts instead of listing every frame

@@ -11,7 +11,7 @@
 #include "meadow/runtime/culling.h"
 #include "meadow/runtime/gl_context.h"
 #include "meadow/runtime/renderer.h"
-#include "scene_test_helpers.h"
+#include "support/scene_files.h"
 
 namespace meadow::runtime {
 namespace {

@@ -10,7 +10,7 @@
 #include "meadow/runtime/gl_context.h"
 #include "meadow/runtime/physics.h"
 #include "meadow/runtime/renderer.h"
-#include "scene_test_helpers.h"
+#include "support/scene_files.h"
 
 namespace meadow::runtime {
 namespace {

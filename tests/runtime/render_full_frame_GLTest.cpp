@@ -13,7 +13,7 @@
 #include "meadow/runtime/gl_context.h"
 #include "meadow/runtime/renderer.h"
 #include "physics_scene_pass.h"
-#include "scene_test_helpers.h"
+#include "support/scene_files.h"
 
 namespace meadow::runtime {
 namespace {

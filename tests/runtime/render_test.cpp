@@ -7,7 +7,7 @@
 #include "meadow/runtime/gl_context.h"
 #include "meadow/runtime/renderer.h"
 #include "meadow/runtime/scene.h"
-#include "scene_test_helpers.h"
+#include "support/scene_files.h"
 
 namespace meadow::runtime {
 namespace {

@@ -6,7 +6,7 @@
 #include "meadow/runtime/error.h"
 #include "meadow/runtime/scene.h"
 #include "physics_scene_pass.h"
-#include "scene_test_helpers.h"
+#include "support/scene_files.h"
 
 namespace meadow::runtime {
 namespace {

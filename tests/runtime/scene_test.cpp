@@ -4,7 +4,7 @@
 #include <gtest/gtest.h>
 
 #include "meadow/runtime/error.h"
-#include "scene_test_helpers.h"
+#include "support/scene_files.h"
 
 namespace meadow::runtime {
 namespace {

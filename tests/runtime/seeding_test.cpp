@@ -9,7 +9,7 @@
 #include "meadow/runtime/error.h"
 #include "meadow/runtime/scene.h"
 #include "scene_gpu.h"
-#include "scene_test_helpers.h"
+#include "support/scene_files.h"
 
 namespace meadow::runtime {
 namespace {

@@ -1,6 +1,8 @@
 // Segmenter: runs the stages of capture/src/segmentation/ in order and collects their reports.
 #include "meadow/capture/segmenter.h"
 
+#include <pcl/console/print.h>
+
 #include <chrono>
 #include <cmath>
 #include <numeric>
@@ -299,6 +301,9 @@ Segmenter::Segmenter(SegmenterParams params) : impl_(std::make_unique<Impl>()) {
     if (auto why = params.problem(); !why.empty())
         throw CaptureError(why + "; fix the segmentation parameters");
     impl_->params = params;
+    // PCL reports on the console (a RANSAC sample it finds collinear, ...); the segmenter
+    // reports through its stage notes and errors, one line per failure.
+    pcl::console::setVerbosityLevel(pcl::console::L_ALWAYS);
 }
 Segmenter::~Segmenter() = default;
 Segmenter::Segmenter(Segmenter&&) noexcept = default;

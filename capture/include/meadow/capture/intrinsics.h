@@ -27,8 +27,13 @@ struct Intrinsics {
     [[nodiscard]] glm::vec3 backProject(float u_px, float v_px, float z_m) const {
         return {(u_px - cx_px) * z_m / fx_px, (v_px - cy_px) * z_m / fy_px, z_m};
     }
-    // Empty when usable; otherwise what is wrong ("fx_px is NaN", "width_px is 0", ...).
+    // Empty when usable; otherwise what is wrong ("fx_px is NaN", "width_px is 0", a focal
+    // length that gives no camera's field of view across the image, ...).
     [[nodiscard]] std::string problem() const;
+    // The parts of problem() that need no image size: finite numbers, positive focal lengths.
+    [[nodiscard]] std::string numbersProblem() const;
+    // The parts that do: the image size, the field of view, the principal point in the image.
+    [[nodiscard]] std::string plausibilityProblem() const;
 };
 
 bool operator==(const Intrinsics&, const Intrinsics&);

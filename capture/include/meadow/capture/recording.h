@@ -4,6 +4,7 @@
 // 0 = no reading. Reading goes through openDepthSource() (depth_source.h); this header holds
 // the writer and the small helpers the CLI needs. PNG and JSON details stay in capture/src.
 #include <filesystem>
+#include <functional>
 #include <memory>
 #include <opencv2/core/mat.hpp>
 #include <string>
@@ -51,6 +52,14 @@ private:
     struct Impl;
     std::unique_ptr<Impl> impl_;
 };
+
+// Whether `folder` may be replaced by a new recording: "" when it does not exist, is empty, or
+// holds a meadow recording (finished or not: recording.json, depth/ frames and their
+// temporaries) and entries `alsoOurs` accepts; otherwise what is in the way. A writer that
+// stages its output (core/staged_folder.h) asks before it starts.
+using OurEntry = std::function<bool(const std::filesystem::directory_entry&)>;
+[[nodiscard]] std::string whyNotReplaceableRecording(const std::filesystem::path& folder,
+                                                     const OurEntry& alsoOurs = {});
 
 // Reads and checks folder/recording.json. Throws CaptureError naming the file and saying what
 // to do when the folder or file is missing, the JSON is malformed, the format name or version

@@ -1,10 +1,15 @@
 #pragma once
 // Output that appears whole or not at all: data goes to "<path>.tmp.<pid>" and is renamed over
 // <path> on commit(); the destructor removes the temporary if commit() never ran. A crash or
-// early return therefore never leaves a half-written file, and an existing file survives.
+// early return therefore never leaves a half-written file, and an existing file survives. The
+// temporary is removed on SIGINT / SIGTERM, and a stale one of a killed run by the next
+// AtomicFile for the same path (temporaries.h). Several AtomicFiles committed one after the
+// other, once all are written, replace several outputs together.
 #include <filesystem>
 #include <fstream>
 #include <string_view>
+
+#include "meadow/core/temporaries.h"
 
 namespace meadow {
 
@@ -26,9 +31,9 @@ private:
     bool committed_ = false;
 };
 
-// True for "<fileName>" itself and for the temporary "<fileName>.tmp.<pid>" that an AtomicFile
-// leaves behind when its process dies between writing and renaming.
-bool isFileOrItsTemporary(std::string_view name, std::string_view fileName);
+// Throws meadow::Error naming `path` when an AtomicFile could not be written there: for a long
+// job to find out before it starts, not after. Leaves nothing behind.
+void checkWritable(const std::filesystem::path& path);
 
 // Convenience: the whole file at once, atomically.
 void writeFileAtomically(const std::filesystem::path& path, std::string_view bytes);

@@ -23,4 +23,8 @@ void exportArchetypeGlb(const ArchetypeLibrary& library, const std::filesystem::
 std::string archetypeGlbBytes(const ArchetypeLibrary& library,
                               const GlbExportOptions& options = {});
 
+// Whether `path` is a glTF binary that meadow wrote (its asset generator names meadow): what a
+// capture may replace. False for anything unreadable.
+bool isMeadowGlb(const std::filesystem::path& path);
+
 }  // namespace meadow::modeling

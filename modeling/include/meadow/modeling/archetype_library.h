@@ -36,6 +36,10 @@ void saveArchetypeLibrary(const ArchetypeLibrary& library, const std::filesystem
 
 // Parse / serialise without files (the loader and writer use these).
 ArchetypeLibrary parseArchetypeLibrary(const std::string& jsonText, const std::string& origin);
+// Whether `path` is a JSON file of the archetype library format (any version): what a capture
+// may replace. False for anything unreadable.
+bool isArchetypeLibraryFile(const std::filesystem::path& path);
+
 std::string serialiseArchetypeLibrary(const ArchetypeLibrary& library);
 
 }  // namespace meadow::modeling
