@@ -181,3 +181,31 @@ TEST(PhysicsPassGLTest, BladeUnderNoForceKeepsItsRestShapeOnTheGpu) {
 
 }  // namespace
 }  // namespace meadow::runtime
+
+namespace meadow::runtime {
+namespace {
+
+// GL guarantees 65535 work groups a dimension, 4,194,240 blades of 64 in one row; the pass
+// spreads more over a second dimension (gl::dispatchGroups), so the blade past that count moves
+// as the first one does. The blades are copies of one blade, so both must end where it ends.
+TEST(PhysicsPassGLTest, MoreBladesThanOneDispatchRowReachesTheLastBlade) {
+    constexpr std::uint32_t kCount = 65535u * BLADE_WORKGROUP_SIZE + 3000u;
+    GlContext context;
+    PhysicsPass pass(context);
+    const testing::TestMeadow one = testing::makeTestMeadow(1, 4);
+    const std::vector<gpu::BladeGpu> blades(kCount, one.blades.front());
+    const std::vector<gpu::BladeRestGpu> rests(kCount, one.rests.front());
+    gl::Buffer b = upload(blades), r = upload(rests);
+    const PhysicsSettings storm = testing::stormSettings();
+    pass.dispatch(b, r, kCount, {}, storm, kDt_s, 0.f);
+    gpu::BladeGpu first{}, last{};
+    glGetNamedBufferSubData(b.id(), 0, sizeof first, &first);
+    glGetNamedBufferSubData(b.id(), (kCount - 1) * sizeof last, sizeof last, &last);
+    EXPECT_NE(glm::vec3(first.v2_stiffness), glm::vec3(one.blades.front().v2_stiffness))
+        << "the storm moves the tip";
+    EXPECT_EQ(glm::vec3(last.v2_stiffness), glm::vec3(first.v2_stiffness))
+        << "blade " << kCount - 1 << " was not simulated";
+}
+
+}  // namespace
+}  // namespace meadow::runtime
