@@ -4,6 +4,7 @@
 #   ./meadow.sh test   install what is missing, build, run the whole test suite (CTest)
 #   ./meadow.sh asan   the same suite under AddressSanitizer + UBSan
 #   ./meadow.sh measure  regenerate every table in docs/measurements (--quick: a smoke run)
+#   ./meadow.sh fuzz [SECONDS]  build the libFuzzer targets (clang) and run each for SECONDS
 #   ./meadow.sh build  install what is missing and build only
 #   ./meadow.sh deps   install what is missing, nothing else
 # Idempotent: packages already present are not touched; builds are incremental.
@@ -20,10 +21,12 @@ packages=(
   libgtest-dev libgmock-dev libbenchmark-dev
   gnuplot-nox
 )
+# Only `fuzz` needs clang and libFuzzer.
+fuzz_packages=(clang libclang-rt-14-dev)
 
 install_missing() {
   local missing=()
-  for p in "${packages[@]}"; do
+  for p in "${packages[@]}" "$@"; do
     dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "ok installed" || missing+=("$p")
   done
   # node and npm run the glTF validator. Checked as commands, not packages: a machine may have
@@ -67,5 +70,6 @@ case "$cmd" in
   asan)  install_missing; build asan; ctest --preset asan -j "$jobs" ;;
   demo)  install_missing; build default; shift; exec "$root/samples/demo.sh" "$root/build/default/cli/meadow" "$@" ;;
   measure) install_missing; build default; shift; exec "$root/tools/measure.sh" "$@" ;;
-  *) sed -n '2,9p' "$0"; [ "$cmd" = help ] || exit 2 ;;
+  fuzz)  install_missing "${fuzz_packages[@]}"; build fuzz; shift; exec "$root/tools/fuzz.sh" "$@" ;;
+  *) sed -n '2,10p' "$0"; [ "$cmd" = help ] || exit 2 ;;
 esac

@@ -28,6 +28,11 @@ const float kArcTinyC2 = 1e-12f;
 struct BladeCurve {
     vec3 v1;
     vec3 v2;
+#ifdef __cplusplus
+    // GLSL builds it as BladeCurve(v1, v2); C++ before clang 16 needs the constructor for that.
+    BladeCurve() = default;
+    BladeCurve(vec3 a, vec3 b) : v1(a), v2(b) {}
+#endif
 };
 
 vec3 safeNormalize(vec3 v) {

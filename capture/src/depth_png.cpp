@@ -66,6 +66,10 @@ cv::Mat1w readDepthPng(const fs::path& file) {
     if (!bytes.empty() &&
         !in.read(reinterpret_cast<char*>(bytes.data()), static_cast<std::streamsize>(size)))
         throw CaptureError("reading " + file.string() + " failed: check the disk and retry");
+    return decodeDepthPng(bytes, file);
+}
+
+cv::Mat1w decodeDepthPng(const std::vector<unsigned char>& bytes, const fs::path& file) {
     if (bytes.empty())
         throw CaptureError(file.string() +
                            " is empty (0 bytes): the frame was never written completely; "

@@ -19,6 +19,9 @@ std::vector<unsigned char> encodeDepthPng(const cv::Mat1w& depth,
 // the file when it cannot be read, is empty, is not a PNG, is truncated or corrupt, or is not
 // 16-bit single-channel.
 cv::Mat1w readDepthPng(const std::filesystem::path& file);
+// The same for a file's bytes already read; `file` names it in messages.
+cv::Mat1w decodeDepthPng(const std::vector<unsigned char>& bytes,
+                         const std::filesystem::path& file);
 
 // Stored integers in `unit` -> millimetres (rounded). Values that do not fit in 16-bit
 // millimetres (beyond 65.535 m, only possible in metre units) become 0, "no reading".

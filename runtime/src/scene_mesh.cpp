@@ -135,17 +135,7 @@ void appendNode(const tinygltf::Model& model, int nodeIndex, const glm::mat4& wo
     for (int child : node.children) appendNode(model, child, worldFromNode, mesh, file, depth + 1);
 }
 
-}  // namespace
-
-TriangleMesh loadGltfTriangles(const std::filesystem::path& file) {
-    if (!std::filesystem::exists(file)) fail(file, "no such file; check the path in the scene");
-    tinygltf::TinyGLTF loader;
-    tinygltf::Model model;
-    std::string error, warning;
-    const bool binary = file.extension() == ".glb";
-    const bool ok = binary ? loader.LoadBinaryFromFile(&model, &error, &warning, file.string())
-                           : loader.LoadASCIIFromFile(&model, &error, &warning, file.string());
-    if (!ok) fail(file, "not a readable glTF 2.0 file (" + oneLine(error) + ")");
+TriangleMesh trianglesOf(const tinygltf::Model& model, const std::filesystem::path& file) {
     TriangleMesh mesh;
     mesh.origin = file.string();
     const int sceneIndex = model.defaultScene >= 0 ? model.defaultScene : 0;
@@ -178,6 +168,32 @@ TriangleMesh loadGltfTriangles(const std::filesystem::path& file) {
                                                                        : glm::vec3(0.f, 1.f, 0.f);
     return mesh;
 }
+
+}  // namespace
+
+TriangleMesh loadGltfTriangles(const std::filesystem::path& file) {
+    if (!std::filesystem::exists(file)) fail(file, "no such file; check the path in the scene");
+    tinygltf::TinyGLTF loader;
+    tinygltf::Model model;
+    std::string error, warning;
+    const bool binary = file.extension() == ".glb";
+    const bool ok = binary ? loader.LoadBinaryFromFile(&model, &error, &warning, file.string())
+                           : loader.LoadASCIIFromFile(&model, &error, &warning, file.string());
+    if (!ok) fail(file, "not a readable glTF 2.0 file (" + oneLine(error) + ")");
+    return trianglesOf(model, file);
+}
+
+TriangleMesh glbTriangles(const std::string& bytes, const std::filesystem::path& file) {
+    tinygltf::TinyGLTF loader;
+    tinygltf::Model model;
+    std::string error, warning;
+    if (!loader.LoadBinaryFromMemory(&model, &error, &warning,
+                                     reinterpret_cast<const unsigned char*>(bytes.data()),
+                                     static_cast<unsigned int>(bytes.size())))
+        fail(file, "not a readable glTF 2.0 binary (" + oneLine(error) + ")");
+    return trianglesOf(model, file);
+}
+
 
 float triangleArea_m2(const TriangleMesh& mesh, std::size_t triangle) {
     const glm::uvec3 t = mesh.triangles[triangle];

@@ -18,6 +18,8 @@ struct TriangleMesh {
 // result is in world space). Missing normals are computed (area-weighted). Throws RuntimeError
 // naming the file for unreadable files and unsupported primitives.
 TriangleMesh loadGltfTriangles(const std::filesystem::path& gltf);
+// The same for a .glb's bytes already read; `file` names it in messages.
+TriangleMesh glbTriangles(const std::string& bytes, const std::filesystem::path& file);
 
 [[nodiscard]] float triangleArea_m2(const TriangleMesh& mesh, std::size_t triangle);
 [[nodiscard]] float surfaceArea_m2(const TriangleMesh& mesh);
