@@ -42,7 +42,7 @@ void StagedFolder::commit() {
     const bool replacing = fs::exists(fs::symlink_status(target_, ec));
     const fs::path aside = temporaryFor(target_, ".old");
     if (replacing) {
-        registerTemporary(aside);
+        registerTemporary(aside, target_);
         fs::rename(target_, aside, ec);
         if (ec) {
             unregisterTemporary(aside);

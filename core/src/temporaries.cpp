@@ -5,8 +5,8 @@
 #include <unistd.h>
 
 #include <cerrno>
+#include <map>
 #include <mutex>
-#include <set>
 #include <system_error>
 #include <thread>
 
@@ -20,7 +20,7 @@ constexpr std::string_view kTemporaryInfix = ".tmp.";
 
 struct Registry {
     std::mutex mutex;
-    std::set<fs::path> paths;
+    std::map<fs::path, fs::path> paths;  // temporary -> where it goes back to ("" for nowhere)
 };
 
 Registry& registry() {
@@ -40,9 +40,12 @@ sigset_t cleanupSignals() {
 void removeRegistered() {
     Registry& r = registry();
     const std::lock_guard<std::mutex> lock(r.mutex);
-    for (const fs::path& p : r.paths) {
+    for (const auto& [path, restoreTo] : r.paths) {
         std::error_code ignored;
-        fs::remove_all(p, ignored);
+        if (!restoreTo.empty() && !fs::exists(fs::symlink_status(restoreTo, ignored)))
+            fs::rename(path, restoreTo, ignored);
+        else
+            fs::remove_all(path, ignored);
     }
     r.paths.clear();
 }
@@ -90,10 +93,10 @@ fs::path temporaryFor(const fs::path& target, const std::string& extra) {
     return tmp;
 }
 
-void registerTemporary(const fs::path& path) {
+void registerTemporary(const fs::path& path, const fs::path& restoreTo) {
     Registry& r = registry();
     const std::lock_guard<std::mutex> lock(r.mutex);
-    r.paths.insert(path);
+    r.paths[path] = restoreTo;
 }
 
 void unregisterTemporary(const fs::path& path) {

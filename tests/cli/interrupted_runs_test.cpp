@@ -1,8 +1,8 @@
 // A run interrupted part way (Ctrl-C, kill, a killed terminal) leaves what was there before:
 // the old output intact and no temporary beside it. SIGKILL cannot be caught; what it leaves
 // is swept by the next run that writes the same output.
-#include <gtest/gtest.h>
 #include <fcntl.h>
+#include <gtest/gtest.h>
 #include <signal.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -49,7 +49,7 @@ bool anyTemporary(const fs::path& root) {
 // Waits until the run is writing (a temporary has appeared) and a little more.
 bool waitUntilWriting(const fs::path& dir) {
     using namespace std::chrono_literals;
-    for (int i = 0; i < 600 && !anyTemporary(dir); ++i) std::this_thread::sleep_for(50ms);
+    for (int i = 0; i < 1200 && !anyTemporary(dir); ++i) std::this_thread::sleep_for(50ms);
     std::this_thread::sleep_for(300ms);
     return anyTemporary(dir);
 }
@@ -79,8 +79,8 @@ TEST_P(InterruptedSynth, LeavesThePreviousRecordingWholeAndNoTemporary) {
     const fs::path rec = dir / "rec";
     ASSERT_EQ(runMeadow("synth --preset quadratic-leaf --out " + rec.string()).exitCode, 0);
     const auto before = snapshot(rec);
-    const pid_t run = startMeadow({"synth", "--preset", "slim-grass", "--frames", "2000", "--out",
-                                   rec.string()});
+    const pid_t run =
+        startMeadow({"synth", "--preset", "slim-grass", "--frames", "2000", "--out", rec.string()});
     ASSERT_TRUE(waitUntilWriting(dir)) << "the run never started writing";
     ::kill(run, signal);
     EXPECT_EQ(endingSignal(run), signal) << "ended by the signal, as without meadow's cleanup";
@@ -102,8 +102,8 @@ TEST(InterruptedRender, LeavesThePreviousFramesAndTheirStatisticsTogether) {
                   .exitCode,
               0);
     const auto before = snapshot(dir / "r");
-    const pid_t run = startMeadow({"render", scene.string(), "--frames", "100000", "--out",
-                                   (dir / "r").string()});
+    const pid_t run = startMeadow(
+        {"render", scene.string(), "--frames", "100000", "--out", (dir / "r").string()});
     ASSERT_TRUE(waitUntilWriting(dir));
     ::kill(run, SIGTERM);
     EXPECT_EQ(endingSignal(run), SIGTERM);
@@ -116,8 +116,8 @@ TEST(KilledRun, WhatSigkillLeavesIsSweptByTheNextRunAndTheOldOutputSurvives) {
     const fs::path rec = dir / "rec";
     ASSERT_EQ(runMeadow("synth --preset quadratic-leaf --out " + rec.string()).exitCode, 0);
     const auto before = snapshot(rec);
-    const pid_t run = startMeadow({"synth", "--preset", "slim-grass", "--frames", "2000", "--out",
-                                   rec.string()});
+    const pid_t run =
+        startMeadow({"synth", "--preset", "slim-grass", "--frames", "2000", "--out", rec.string()});
     ASSERT_TRUE(waitUntilWriting(dir));
     ::kill(run, SIGKILL);
     EXPECT_EQ(endingSignal(run), SIGKILL);

@@ -19,8 +19,11 @@ namespace meadow {
 [[nodiscard]] std::filesystem::path temporaryFor(const std::filesystem::path& target,
                                                  const std::string& extra = "");
 
-// While registered, `path` (a file or a folder) is removed if the process is interrupted.
-void registerTemporary(const std::filesystem::path& path);
+// While registered, `path` (a file or a folder) is removed if the process is interrupted; with
+// `restoreTo`, it is the old output moved aside by a swap, and is renamed back there instead
+// when nothing has taken that place yet.
+void registerTemporary(const std::filesystem::path& path,
+                       const std::filesystem::path& restoreTo = {});
 void unregisterTemporary(const std::filesystem::path& path);
 
 // Call first thing in main, before any thread starts: blocks SIGINT, SIGTERM and SIGHUP in
