@@ -111,8 +111,55 @@ vec3 windPointSource(PhysicsParamsGpu p, vec3 v0) {
     return safeNormalize(fromSource) * p.windSource.w * falloff * (0.5f + 0.5f * sin(phase));
 }
 
+// lowbias32 (Wellons 2018, "Prospecting for hash functions"): 32-bit integer avalanche, the same
+// bits in GLSL and C++.
+uint windHash(uint x) {
+    x ^= x >> 16u;
+    x *= 0x7feb352du;
+    x ^= x >> 15u;
+    x *= 0x846ca68bu;
+    x ^= x >> 16u;
+    return x;
+}
+
+// Value noise in [0, 1): a hashed value at each integer lattice point, blended with a smoothstep
+// between them; `salt` picks an independent field.
+float latticeValue(int x, int y, uint salt) {
+    uint h = windHash(uint(x) * 0x9e3779b1u ^ windHash(uint(y) ^ salt));
+    return float(h >> 8u) * (1.0f / 16777216.0f);
+}
+
+float valueNoise(vec2 q, uint salt) {
+    vec2 cell = floor(q);
+    vec2 f = q - cell;
+    vec2 u = f * f * (vec2(3.0f) - 2.0f * f);
+    int x = int(cell.x);
+    int y = int(cell.y);
+    float a = latticeValue(x, y, salt);
+    float b = latticeValue(x + 1, y, salt);
+    float c = latticeValue(x, y + 1, salt);
+    float d = latticeValue(x + 1, y + 1, salt);
+    return mix(mix(a, b, u.x), mix(c, d, u.x), u.y);
+}
+
+// Gusts and turbulence, after Habel, Wimmer & Jeschke 2007 (Sec. 4.2: grass moved by noise that
+// the wind carries over the field): gusts are patches of stronger wind along its direction,
+// about the gust size across, travelling downwind at the gust speed; turbulence is a finer noise
+// stirring the blades in every horizontal direction, also carried and slowly changing. The
+// noise is evaluated, not read from a texture, so the CPU reference computes the same values.
+vec3 windGustsAndTurbulence(PhysicsParamsGpu p, vec3 v0) {
+    vec3 direction = safeNormalize(vec3(p.windWave));
+    float t = p.gravityMix_dt.w;
+    vec2 carried = vec2(v0.x, v0.z) - p.windShape.w * t * vec2(direction.x, direction.z);
+    float gust = p.windGust.x * valueNoise(carried / max(p.windGust.y, kDirectionEpsilon_m), 1u);
+    vec2 q = carried / max(p.windGust.w, kDirectionEpsilon_m) + vec2(0.37f, 0.61f) * t;
+    float tx = valueNoise(q, 2u) - 0.5f;
+    float tz = valueNoise(q, 3u) - 0.5f;
+    return direction * gust + 2.0f * p.windGust.z * vec3(tx, 0.0f, tz);
+}
+
 vec3 windInfluence(PhysicsParamsGpu p, vec3 v0) {
-    return windDirectionalWave(p, v0) + windPointSource(p, v0);
+    return windDirectionalWave(p, v0) + windPointSource(p, v0) + windGustsAndTurbulence(p, v0);
 }
 
 // Directional alignment, Jahrmann & Wimmer 2017, Eq. (7): fd = 1 - |wi/|wi| . (v2-v0)/|v2-v0||;

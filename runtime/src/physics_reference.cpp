@@ -29,7 +29,10 @@ gpu::PhysicsParamsGpu packPhysicsParams(const PhysicsSettings& s, float dt_s, fl
     p.gravityMix_dt = glm::vec4(s.mass, s.gravityCenterMix, dt_s, time_s);
     p.windWave = glm::vec4(s.windDirection, s.windWave_mps);
     p.windSource = glm::vec4(s.windSource_m, s.windSource_mps);
-    p.windShape = glm::vec4(s.windWavelength_m, s.windFrequency_hz, s.windSourceRadius_m, 0.f);
+    p.windShape = glm::vec4(s.windWavelength_m, s.windFrequency_hz, s.windSourceRadius_m,
+                            s.windGustSpeed_mps);
+    p.windGust =
+        glm::vec4(s.windGust_mps, s.windGustSize_m, s.windTurbulence_mps, s.windTurbulenceSize_m);
     p.collision = glm::vec4(s.etaDecay_per_s, s.recoveryFloor, s.etaGain, 0.f);
     p.counts = glm::uvec4(bladeCount, colliderCount,
                           s.exactLength ? PHYSICS_LENGTH_EXACT : PHYSICS_LENGTH_PAPER, 0u);

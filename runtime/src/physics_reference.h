@@ -3,6 +3,7 @@
 // pass is tested against. The equations are not re-typed here: physics_reference.cpp compiles
 // shaders/common_physics.glsl itself as C++ (glm in scope), so CPU and GPU run one text.
 #include <cstdint>
+#include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 #include <span>
 #include <vector>
@@ -34,6 +35,8 @@ glm::vec3 tipAboveGround(glm::vec3 v0, glm::vec3 v2, glm::vec3 up);
 glm::vec3 bladeWidthAxis(glm::vec3 up, float angle);
 glm::vec3 bladeFrontDirection(glm::vec3 up, float angle);
 glm::vec3 sphereCollisionTranslation(glm::vec3 p, glm::vec4 sphere);
+glm::vec3 windInfluence(gpu::PhysicsParamsGpu p, glm::vec3 v0);
+float valueNoise(glm::vec2 q, std::uint32_t salt);
 }  // namespace shader
 
 // validateBlade() of common_physics.glsl (Eq. (10)-(13)): the validated v1 and v2.

@@ -1,6 +1,7 @@
 #include "physics_scene_pass.h"
 
 #include <algorithm>
+#include <cmath>
 #include <vector>
 
 #include "meadow/runtime/physics.h"
@@ -26,6 +27,11 @@ PhysicsSettings physicsSettingsOf(const SceneDescription& scene, const gpu::Fram
     s.windSource_m = scene.wind.source_m;
     s.windSource_mps = scene.wind.sourceAmplitude_m_s;
     s.windSourceRadius_m = scene.wind.sourceRadius_m;
+    s.windGust_mps = scene.wind.gustAmplitude_m_s;
+    s.windGustSize_m = scene.wind.gustSize_m;
+    s.windGustSpeed_mps = scene.wind.gustSpeed_m_s;
+    s.windTurbulence_mps = scene.wind.turbulenceAmplitude_m_s;
+    s.windTurbulenceSize_m = scene.wind.turbulenceSize_m;
     return s;
 }
 
@@ -39,12 +45,12 @@ public:
         spheres_.clear();
         for (const ColliderDescription& c : in.scene.colliders)
             spheres_.push_back({c.center_m + c.velocity_m_s * in.time_s, c.radius_m});
-        // A long hitch (a debugger, a slow first frame) must not launch the blades: the explicit
-        // step is stable for s * dt < 1, so dt is capped at 1/20 s.
-        constexpr float kMaxStep_s = 0.05f;
-        pass_.dispatch(in.gpu.blades, in.gpu.rests, in.gpu.bladeCount, spheres_,
-                       physicsSettingsOf(in.scene, in.frame), std::min(in.deltaTime_s, kMaxStep_s),
-                       in.time_s);
+        const PhysicsSubsteps steps = physicsSubsteps(in.scene.blades.stiffness.y, in.deltaTime_s);
+        const PhysicsSettings settings = physicsSettingsOf(in.scene, in.frame);
+        const float start_s = in.time_s - static_cast<float>(steps.count) * steps.step_s;
+        for (int k = 1; k <= steps.count; ++k)
+            pass_.dispatch(in.gpu.blades, in.gpu.rests, in.gpu.bladeCount, spheres_, settings,
+                           steps.step_s, start_s + static_cast<float>(k) * steps.step_s);
     }
 
 private:
@@ -53,6 +59,15 @@ private:
 };
 
 }  // namespace
+
+PhysicsSubsteps physicsSubsteps(float maxStiffness_per_s, float frameStep_s) {
+    constexpr float kMaxFrame_s = 0.1f;
+    constexpr float kMaxStiffnessStep = 0.5f;
+    const float dt_s = std::clamp(frameStep_s, 0.f, kMaxFrame_s);
+    const int count =
+        std::max(1, static_cast<int>(std::ceil(maxStiffness_per_s * dt_s / kMaxStiffnessStep)));
+    return {count, dt_s / static_cast<float>(count)};
+}
 
 std::unique_ptr<BladeComputePass> makePhysicsComputePass(GlContext& context) {
     return std::make_unique<PhysicsComputePass>(context);

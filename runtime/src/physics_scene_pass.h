@@ -14,4 +14,13 @@ namespace meadow::runtime {
                                                 const gpu::FrameGpu& frame);
 [[nodiscard]] std::unique_ptr<BladeComputePass> makePhysicsComputePass(GlContext& context);
 
+// How a frame's time step is simulated: at most kMaxFrame_s of it (a long hitch must not launch
+// the blades), cut into substeps short enough for the explicit step to be stable for the
+// stiffest blade (s dt <= 0.5; stable below 1).
+struct PhysicsSubsteps {
+    int count = 1;
+    float step_s = 0.f;
+};
+[[nodiscard]] PhysicsSubsteps physicsSubsteps(float maxStiffness_per_s, float frameStep_s);
+
 }  // namespace meadow::runtime

@@ -199,7 +199,8 @@ void readWind(const JsonReader& w, WindDescription& wind) {
                "renamed to wave_amplitude_m_s (the wind pushes the tip with a velocity, m/s); "
                "rename the field, its value keeps its meaning");
     w.onlyKeys({"direction", "wave_amplitude_m_s", "wavelength_m", "frequency_hz", "source_m",
-                "source_amplitude_m_s", "source_radius_m"});
+                "source_amplitude_m_s", "source_radius_m", "gust_amplitude_m_s", "gust_size_m",
+                "gust_speed_m_s", "turbulence_amplitude_m_s", "turbulence_size_m"});
     wind.direction = normalised(w, "direction", wind.direction);
     wind.waveAmplitude_m_s =
         w.floatNumber("wave_amplitude_m_s", wind.waveAmplitude_m_s, 0.f, 1000.f);
@@ -209,6 +210,13 @@ void readWind(const JsonReader& w, WindDescription& wind) {
     wind.sourceAmplitude_m_s =
         w.floatNumber("source_amplitude_m_s", wind.sourceAmplitude_m_s, 0.f, 1000.f);
     wind.sourceRadius_m = w.floatNumber("source_radius_m", wind.sourceRadius_m, 1e-3f, 1e6f);
+    wind.gustAmplitude_m_s =
+        w.floatNumber("gust_amplitude_m_s", wind.gustAmplitude_m_s, 0.f, 1000.f);
+    wind.gustSize_m = w.floatNumber("gust_size_m", wind.gustSize_m, 1e-2f, 1e5f);
+    wind.gustSpeed_m_s = w.floatNumber("gust_speed_m_s", wind.gustSpeed_m_s, 0.f, 1000.f);
+    wind.turbulenceAmplitude_m_s =
+        w.floatNumber("turbulence_amplitude_m_s", wind.turbulenceAmplitude_m_s, 0.f, 1000.f);
+    wind.turbulenceSize_m = w.floatNumber("turbulence_size_m", wind.turbulenceSize_m, 1e-2f, 1e5f);
 }
 
 void readColliders(const JsonReader& root, std::vector<ColliderDescription>& colliders) {

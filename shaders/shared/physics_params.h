@@ -22,14 +22,18 @@ struct PhysicsParamsGpu {
     vec4 gravityMix_dt;     // x mass m (scale), y t in [0,1] (D -> C), z dt (s), w time (s)
     vec4 windWave;          // xyz wave direction (unit, world), w amplitude (m/s)
     vec4 windSource;        // xyz point source (world, m), w amplitude (m/s)
-    vec4 windShape;         // x wavelength (m), y wave frequency (Hz), z source radius (m), w -
+    vec4 windShape;         // x wavelength (m), y wave frequency (Hz), z source radius (m),
+                            // w speed the gusts travel at along the wind (m/s)
+    vec4 windGust;          // x gust amplitude (m/s), y gust size (m), z turbulence amplitude
+                            // (m/s), w turbulence size (m)
     vec4 collision;         // x eta decay a (1/s), y recovery floor, z eta gain, w unused
     uvec4 counts;           // x blades, y colliders, z PHYSICS_LENGTH_*, w unused
 };
 
 #ifdef __cplusplus
-static_assert(sizeof(PhysicsParamsGpu) == 128, "std140: eight 16-byte rows");
-static_assert(offsetof(PhysicsParamsGpu, collision) == 96 &&
-              offsetof(PhysicsParamsGpu, counts) == 112);
+static_assert(sizeof(PhysicsParamsGpu) == 144, "std140: nine 16-byte rows");
+static_assert(offsetof(PhysicsParamsGpu, windGust) == 96 &&
+              offsetof(PhysicsParamsGpu, collision) == 112 &&
+              offsetof(PhysicsParamsGpu, counts) == 128);
 }  // namespace meadow::runtime::gpu
 #endif

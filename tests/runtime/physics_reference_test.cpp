@@ -195,6 +195,37 @@ TEST(PhysicsReference, WindAtZeroFrequencyStandsStillAndAtHalfAHertzKeepsMoving)
 // Eq. (3) with t > 0: a gravity centre beside the blade pulls its tip toward the centre. The blade
 // stands straight at the origin with its width along +X, so front gravity (Eq. (4)) pushes along
 // +Z only and any x movement of the tip comes from the centre.
+// Gusts are a noise field the wind carries (Habel et al. 2007): the gust felt at x at time t is
+// the one felt upwind, at x - speed t, at time 0, so gusts cross the meadow as waves. Its noise
+// stays in [0, 1) and is continuous across lattice cells.
+TEST(PhysicsReference, GustsTravelDownwindAtTheirSpeedAndTheirNoiseIsBoundedAndContinuous) {
+    PhysicsSettings s;
+    s.windDirection = glm::normalize(glm::vec3(1.f, 0.f, 0.5f));
+    s.windWave_mps = 0.f;
+    s.windGust_mps = 3.f;
+    s.windGustSize_m = 2.f;
+    s.windGustSpeed_mps = 2.5f;
+    const glm::vec3 x0{0.3f, 0.f, -1.7f};
+    const float t = 1.6f;
+    const glm::vec3 downwind = x0 + s.windGustSpeed_mps * t * s.windDirection;
+    const glm::vec3 atStart = shader::windInfluence(packPhysicsParams(s, 0.01f, 0.f, 1, 0), x0);
+    const glm::vec3 later = shader::windInfluence(packPhysicsParams(s, 0.01f, t, 1, 0), downwind);
+    EXPECT_NEAR(glm::distance(atStart, later), 0.f, 1e-4f);
+    EXPECT_GT(glm::length(atStart), 0.f);
+    float lo = 1.f, hi = 0.f, jump = 0.f;
+    float previous = shader::valueNoise({-4.f, 0.37f}, 1u);
+    for (int i = 1; i <= 8000; ++i) {
+        const float v = shader::valueNoise({-4.f + i * 0.001f, 0.37f}, 1u);
+        lo = std::min(lo, v), hi = std::max(hi, v);
+        jump = std::max(jump, std::abs(v - previous));
+        previous = v;
+    }
+    EXPECT_GE(lo, 0.f);
+    EXPECT_LT(hi, 1.f);
+    EXPECT_GT(hi - lo, 0.3f) << "gusts vary from place to place";
+    EXPECT_LT(jump, 0.01f) << "no step at a cell border (smoothstep blend)";
+}
+
 TEST(PhysicsReference, GravityCentreMixPullsTheTipTowardTheCentre) {
     const float h = 0.4f;
     auto tipAfterOneSecond = [&](glm::vec3 centre_m, float t) {

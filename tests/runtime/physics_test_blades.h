@@ -42,7 +42,8 @@ inline TestMeadow makeTestMeadow(std::uint32_t count, std::uint32_t seed, float 
     return m;
 }
 
-// Strong wind: a travelling wave of up to 8 m/s and a 10 m/s point source, under earth gravity.
+// Strong wind: a travelling wave of up to 8 m/s, a 10 m/s point source, gusts and turbulence, under
+// earth gravity.
 inline PhysicsSettings stormSettings() {
     PhysicsSettings s;
     s.windDirection = glm::normalize(glm::vec3(1.f, 0.f, 0.3f));
@@ -50,6 +51,10 @@ inline PhysicsSettings stormSettings() {
     s.windSource_m = {0.5f, 0.f, -0.5f};
     s.windSource_mps = 10.f;
     s.windSourceRadius_m = 3.f;
+    s.windGust_mps = 4.f;  // gusts and turbulence: the noise must agree on CPU and GPU too
+    s.windGustSize_m = 1.5f;
+    s.windTurbulence_mps = 2.f;
+    s.windTurbulenceSize_m = 0.4f;
     return s;
 }
 

@@ -26,6 +26,15 @@ struct PhysicsSettings {
     float windWavelength_m = 4.f;
     float windFrequency_hz = 0.5f;  // the waves' and rings' frequency; 0: a wave that stands still
     float windSourceRadius_m = 5.f;
+    // Gusts and turbulence (Habel, Wimmer & Jeschke 2007): noise fields the wind carries across
+    // the meadow. Gusts are patches of stronger wind along the wind's direction, about
+    // windGustSize_m across, travelling at windGustSpeed_mps; turbulence stirs the blades in
+    // every horizontal direction at a smaller scale. 0 amplitude: none.
+    float windGust_mps = 0.f;
+    float windGustSize_m = 3.f;
+    float windGustSpeed_mps = 2.f;
+    float windTurbulence_mps = 0.f;
+    float windTurbulenceSize_m = 0.6f;
 
     // Collisions, Sec. 5.1: the collision strength eta decays by etaDecay_per_s each second, grows
     // by etaGain |d| / h per collision; recovery is weakened to max(1 - eta, recoveryFloor).

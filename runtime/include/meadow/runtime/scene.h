@@ -46,8 +46,11 @@ struct BladeSeeding {
     float tuftSpacing_m = 0.0f;         // Poisson-disk distance between tuft centres; 0 = derived
     glm::vec2 heightScale{0.8f, 1.2f};  // uniform range, times the archetype's height
     glm::vec2 widthScale{0.8f, 1.2f};   // uniform range, times the archetype's width
-    glm::vec2 stiffness{0.6f, 1.0f};    // uniform range of the physics stiffness s
-    std::uint32_t seed = 1;             // the same seed gives the same meadow
+    // Uniform range of the physics stiffness s (1/s): how fast a bent blade springs back (it
+    // halves its bend in ln 2 / s seconds) and how little gravity and wind bend it (by their
+    // push over s). Grass that stands and sways: 10-20.
+    glm::vec2 stiffness{12.f, 18.f};
+    std::uint32_t seed = 1;  // the same seed gives the same meadow
     std::optional<DensityMap> densityMap;
 };
 
@@ -81,6 +84,12 @@ struct WindDescription {
     glm::vec3 source_m = PhysicsSettings{}.windSource_m;  // point source (a fan, a helicopter)
     float sourceAmplitude_m_s = PhysicsSettings{}.windSource_mps;  // 0: no point source
     float sourceRadius_m = PhysicsSettings{}.windSourceRadius_m;   // fades linearly to 0 here
+    // Gusts and turbulence carried across the meadow (PhysicsSettings: Habel et al. 2007).
+    float gustAmplitude_m_s = PhysicsSettings{}.windGust_mps;
+    float gustSize_m = PhysicsSettings{}.windGustSize_m;
+    float gustSpeed_m_s = PhysicsSettings{}.windGustSpeed_mps;
+    float turbulenceAmplitude_m_s = PhysicsSettings{}.windTurbulence_mps;
+    float turbulenceSize_m = PhysicsSettings{}.windTurbulenceSize_m;
 };
 
 struct ColliderDescription {
