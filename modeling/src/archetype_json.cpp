@@ -19,6 +19,10 @@ constexpr int kMaxCount = std::numeric_limits<int>::max();
 // or width is another unit or a corrupt file.
 constexpr float kMaxBladeExtent_m = 10.f;
 
+// One full turn about the spine from base to tip is already more than any leaf shows; more is a
+// unit mistake (degrees for radians).
+constexpr float kMaxTwist_rad = 6.2831853f;
+
 json vec3ToJson(const glm::vec3& v) { return json::array({v.x, v.y, v.z}); }
 
 }  // namespace
@@ -33,6 +37,8 @@ json archetypeToJson(const Archetype& a) {
     j["width_m"] = a.width.width_m;
     j["nearest_shape"] = toString(a.nearestShape);
     j["tau"] = a.tau;
+    j["left_width_fraction"] = a.leftWidthFraction;
+    j["twist_at_tip_rad"] = a.twistAtTip_rad;
     j["fit"] = {{"spine_rms_mm", a.fit.spineRms_mm},
                 {"spine_max_mm", a.fit.spineMax_mm},
                 {"width_mae_mm", a.fit.widthMae_mm},
@@ -44,7 +50,9 @@ json archetypeToJson(const Archetype& a) {
                 {"skeleton_points", a.fit.skeletonPoints},
                 {"base_extension_mm", a.fit.baseExtension_mm},
                 {"base_not_rooted", a.fit.baseNotRooted},
-                {"tip_extension_mm", a.fit.tipExtension_mm}};
+                {"tip_extension_mm", a.fit.tipExtension_mm},
+                {"twist_points", a.fit.twistPoints},
+                {"base_tilt_deg", a.fit.baseTilt_deg}};
     j["source"] = {{"recording", a.source.recording},
                    {"frame", a.source.frame},
                    {"blade_id", a.source.bladeId},
@@ -86,6 +94,9 @@ Archetype archetypeFromJson(const json& value, const std::string& path) {
                "unknown shape '" + shape + "' (" + kAnalyticShapeNames.list() + ")");
     a.nearestShape = *nearest;
     a.tau = r.floatNumber("tau", 0.5f, 0.f, 1.f);
+    // Absent in older libraries: symmetric and flat.
+    a.leftWidthFraction = r.floatNumber("left_width_fraction", 0.5f, 0.f, 1.f);
+    a.twistAtTip_rad = r.floatNumber("twist_at_tip_rad", 0.f, -kMaxTwist_rad, kMaxTwist_rad);
     // Fit report, source and knots are optional: an authored archetype has none.
     if (r.has("fit")) {
         const JsonReader fit = r.object("fit");
@@ -107,6 +118,8 @@ Archetype archetypeFromJson(const json& value, const std::string& path) {
         a.fit.baseExtension_mm = length_mm("base_extension_mm");
         a.fit.baseNotRooted = fit.boolean("base_not_rooted", false);
         a.fit.tipExtension_mm = length_mm("tip_extension_mm");
+        a.fit.twistPoints = fit.integer("twist_points", 0, 0, kMaxCount);  // absent before twist
+        a.fit.baseTilt_deg = fit.floatNumber("base_tilt_deg", 0.f, -180.f, 180.f);
     }
     if (r.has("source")) {
         const JsonReader src = r.object("source");

@@ -13,6 +13,7 @@ namespace meadow::modeling {
 namespace {
 
 constexpr float kMillimetresPerMetre = 1000.f;
+constexpr float kDegreesPerRadian = 57.2957795f;
 constexpr float kStandardGravity_mps2 = 9.81f;
 // The DT width check skips this fraction of the chain at each end, where the mask is cut (base)
 // or narrower than a pixel (tip) and the DT does not measure the blade's width.
@@ -102,7 +103,13 @@ BladeFit fitArchetype(const Skeleton& skeleton, const BladeFitParams& params, co
     std::vector<float> s(points.size());
     for (std::size_t j = 0; j < points.size(); ++j)
         s[j] = spine.spine_m.lengthTo(spine.t[j]) / length_m;
-    a.width = profileWithinTolerance(s, skeleton.width_m, params);
+    // The contour shows the width foreshortened where the face turns away from the camera: the
+    // twist's fitted turn scales it back to the width in the face.
+    const TwistFit twist = fitTwist(skeleton, out.frame, a.spine_m, spine.t, s);
+    std::vector<float> width_m = skeleton.width_m;
+    for (std::size_t j = 0; j < width_m.size(); ++j) width_m[j] /= twist.facing[j];
+    a.twistAtTip_rad = twist.twistAtTip_rad;
+    a.width = profileWithinTolerance(s, width_m, params);
     const ShapeFit shape = nearestAnalyticShape(a.width);
     a.nearestShape = shape.shape;
     a.tau = shape.tau;
@@ -110,10 +117,12 @@ BladeFit fitArchetype(const Skeleton& skeleton, const BladeFitParams& params, co
     FitReport& r = a.fit;
     r.spineRms_mm = spine.rms_m * kMillimetresPerMetre;
     r.spineMax_mm = spine.max_m * kMillimetresPerMetre;
-    r.widthMae_mm = widthProfileMae_m(a.width, s, skeleton.width_m) * kMillimetresPerMetre;
+    r.widthMae_mm = widthProfileMae_m(a.width, s, width_m) * kMillimetresPerMetre;
     for (std::size_t j = 0; j < s.size(); ++j)
-        r.widthMax_mm = std::max(
-            r.widthMax_mm, std::abs(a.width.at(s[j]) - skeleton.width_m[j]) * kMillimetresPerMetre);
+        r.widthMax_mm =
+            std::max(r.widthMax_mm, std::abs(a.width.at(s[j]) - width_m[j]) * kMillimetresPerMetre);
+    r.twistPoints = twist.points;
+    r.baseTilt_deg = twist.baseTilt_rad * kDegreesPerRadian;
     r.shapeError_mm = shape.error_m * kMillimetresPerMetre;
     r.sideLengthRatio = skeleton.sideLengthRatio;
     r.asymmetric = skeleton.asymmetric;

@@ -41,6 +41,7 @@ float analyticShapeWidthFraction(AnalyticShape shape, float v, float tau) {
         case AnalyticShape::Triangle:
             return 1.f - v;
         case AnalyticShape::Quadratic:
+        case AnalyticShape::OneSidedQuadratic:
             return 1.f - v * v;
         case AnalyticShape::TriangleTip:
             return v < tau ? 1.f : 1.f - (v - tau) / std::max(1.f - tau, 1e-6f);

@@ -37,9 +37,10 @@ TriangleMesh bladeMesh(const Archetype& archetype, const BladeMeshOptions& optio
     if (options.segments < 1)
         throw std::invalid_argument("bladeMesh: segments must be >= 1, got " +
                                     std::to_string(options.segments));
-    if (!(options.leftWidthFraction >= 0.f && options.leftWidthFraction <= 1.f))
-        throw std::invalid_argument("bladeMesh: leftWidthFraction must be in [0, 1], got " +
-                                    std::to_string(options.leftWidthFraction));
+    const float left = archetype.leftWidthFraction;
+    if (!(left >= 0.f && left <= 1.f))
+        throw std::invalid_argument("bladeMesh: leftWidthFraction of '" + archetype.name +
+                                    "' must be in [0, 1], got " + std::to_string(left));
     const QuadraticBezier& spine = archetype.spine_m;
     if (!(spine.length() > 0.f))
         throw std::invalid_argument("bladeMesh: archetype '" + archetype.name +
@@ -63,11 +64,11 @@ TriangleMesh bladeMesh(const Archetype& archetype, const BladeMeshOptions& optio
                           ? glm::normalize(txz)
                           : glm::normalize(previousW - T * glm::dot(previousW, T));
         previousW = W;
-        if (options.twistAtTip_rad != 0.f) W = rotateAbout(W, T, options.twistAtTip_rad * s);
+        if (archetype.twistAtTip_rad != 0.f) W = rotateAbout(W, T, archetype.twistAtTip_rad * s);
         const glm::vec3 N = glm::normalize(glm::cross(W, T));
         const float w = archetype.width.at(s);
-        mesh.positions_m.push_back(p - W * (options.leftWidthFraction * w));
-        mesh.positions_m.push_back(p + W * ((1.f - options.leftWidthFraction) * w));
+        mesh.positions_m.push_back(p - W * (left * w));
+        mesh.positions_m.push_back(p + W * ((1.f - left) * w));
         mesh.normals.push_back(N);
         mesh.normals.push_back(N);
     }

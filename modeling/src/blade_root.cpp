@@ -148,6 +148,8 @@ void rootSkeleton(Skeleton& s, const ClusterBase& base, const RootParams& params
     const auto stations = arcLengthStations(points, n);
     std::vector<glm::vec2> midline = s.midline_px, across = s.across_px;
     std::vector<float> width_px = s.width_px, width_m = s.width_m, depth = s.depth_m;
+    std::vector<glm::vec3> acrossStep = s.acrossStep_m;
+    prepend(acrossStep, glm::vec3(0.f));  // the added piece was not read
     prepend(midline, base.base_px);
     prepend(across, across.empty() ? glm::vec2(1.f, 0.f) : across.front());
     prepend(width_px, referencePx);
@@ -167,6 +169,7 @@ void rootSkeleton(Skeleton& s, const ClusterBase& base, const RootParams& params
     if (width_px.size() == points.size()) s.width_px = sampleAt(width_px, stations);
     s.width_m = sampleAt(width_m, stations);
     if (depth.size() == points.size()) s.depth_m = sampleAt(depth, stations);
+    if (acrossStep.size() == points.size()) s.acrossStep_m = sampleAt(acrossStep, stations);
     s.width_px.back() = 0.f;
     s.width_m.back() = 0.f;
     s.arcFraction.assign(static_cast<std::size_t>(n), 0.f);

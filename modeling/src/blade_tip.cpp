@@ -119,6 +119,8 @@ void extendSkeletonTip(Skeleton& s, const TipParams& params) {
     if (across.size() == s.points_m.size()) across.push_back(across.back());
     std::vector<float> depth = s.depth_m;
     if (depth.size() == s.points_m.size()) depth.push_back(points.back().z);
+    std::vector<glm::vec3> acrossStep = s.acrossStep_m;
+    if (acrossStep.size() == s.points_m.size()) acrossStep.push_back(glm::vec3(0.f));
 
     const auto stations = detail::arcLengthStations(points, n);
     s.tipPoints =
@@ -140,6 +142,7 @@ void extendSkeletonTip(Skeleton& s, const TipParams& params) {
             if (glm::length(a) > 0.f) a = glm::normalize(a);
     }
     if (depth.size() == points.size()) s.depth_m = detail::sampleAt(depth, stations);
+    if (acrossStep.size() == points.size()) s.acrossStep_m = detail::sampleAt(acrossStep, stations);
     s.tipExtension_m = extension_m;
     s.arcFraction.assign(static_cast<std::size_t>(n), 0.f);
     for (int i = 1; i < n; ++i)

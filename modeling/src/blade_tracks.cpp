@@ -196,6 +196,19 @@ Skeleton meanSkeleton(const std::vector<const Skeleton*>& skeletons) {
     mean.across_px = meanOf<glm::vec2>(skeletons, &Skeleton::across_px);
     for (glm::vec2& a : mean.across_px)
         if (const float l = glm::length(a); l > 0.f) a /= l;
+    // The across steps of the sightings that read one (a zero step was not read).
+    if (std::all_of(skeletons.begin(), skeletons.end(),
+                    [n](const Skeleton* s) { return s->acrossStep_m.size() == n; })) {
+        for (std::size_t j = 0; j < n; ++j) {
+            glm::vec3 sum(0.f);
+            int read = 0;
+            for (const Skeleton* s : skeletons)
+                if (s->acrossStep_m[j] != glm::vec3(0.f)) sum += s->acrossStep_m[j], ++read;
+            mean.acrossStep_m[j] = read > 0 ? sum / static_cast<float>(read) : glm::vec3(0.f);
+        }
+    } else {
+        mean.acrossStep_m.clear();
+    }
     const float count = static_cast<float>(skeletons.size());
     float base = 0.f, tip = 0.f, rootPoints = 0.f, tipPoints = 0.f, sides = 0.f, ridge = 0.f;
     int notRooted = 0, asymmetric = 0, filled = 0;

@@ -260,6 +260,49 @@ std::vector<float> regressDepth(const std::vector<float>& z, int h) {
     return out;
 }
 
+// Depth slope across the blade at one midline point (metres of depth per pixel across, side A
+// -> side B): least squares of depth on the lateral offset over the blade's pixels within
+// kTiltHalfLength_px along the blade and inside its width less kTiltEdgeMargin_px at each side,
+// where pixels mix the blade with what lies behind it. Readings further than maxDepthJump_m from
+// the point's depth belong to something else. NaN when too few pixels or too narrow a spread.
+constexpr float kTiltHalfLength_px = 1.5f;
+constexpr float kTiltEdgeMargin_px = 1.f;
+constexpr int kMinTiltReadings = 5;
+constexpr float kMinTiltSpread_px = 2.5f;
+float acrossDepthSlope_mPerPx(const capture::DepthFrame& frame, const capture::BladeContour& blade,
+                              glm::vec2 mid_px, glm::vec2 across, float width_px,
+                              float centreDepth_m, const SkeletonParams& params) {
+    const float halfLateral = 0.5f * width_px - kTiltEdgeMargin_px;
+    if (!(halfLateral > 0.5f * kMinTiltSpread_px) || !std::isfinite(centreDepth_m))
+        return std::nanf("");
+    const glm::vec2 along{-across.y, across.x};
+    const int r = static_cast<int>(std::ceil(halfLateral + kTiltHalfLength_px));
+    const int u0 = static_cast<int>(std::lround(mid_px.x)),
+              v0 = static_cast<int>(std::lround(mid_px.y));
+    double sx = 0, sy = 0, sxx = 0, sxy = 0;
+    int m = 0;
+    float lo = 1e9f, hi = -1e9f;
+    for (int v = std::max(0, v0 - r); v <= std::min(frame.depth_mm.rows - 1, v0 + r); ++v)
+        for (int u = std::max(0, u0 - r); u <= std::min(frame.depth_mm.cols - 1, u0 + r); ++u) {
+            const glm::vec2 offset =
+                glm::vec2(static_cast<float>(u), static_cast<float>(v)) - mid_px;
+            const float lateral = glm::dot(offset, across);
+            if (std::abs(glm::dot(offset, along)) > kTiltHalfLength_px ||
+                std::abs(lateral) > halfLateral)
+                continue;
+            if (!blade.mask.empty() && !blade.covers({u, v})) continue;
+            const std::uint16_t d = frame.depth_mm(v, u);
+            const float z = static_cast<float>(d) * 1e-3f;
+            if (d == 0 || std::abs(z - centreDepth_m) > params.maxDepthJump_m) continue;
+            sx += lateral, sy += z, sxx += lateral * lateral, sxy += lateral * z;
+            lo = std::min(lo, lateral), hi = std::max(hi, lateral);
+            ++m;
+        }
+    const double det = m * sxx - sx * sx;
+    if (m < kMinTiltReadings || hi - lo < kMinTiltSpread_px || !(det > 1e-9)) return std::nanf("");
+    return static_cast<float>((m * sxy - sx * sy) / det);
+}
+
 }  // namespace
 
 std::vector<glm::vec2> resampleByArcLength(const std::vector<glm::vec2>& polyline, int n) {
@@ -401,6 +444,14 @@ Skeleton extractSkeleton(const capture::BladeContour& blade, const capture::Dept
         const glm::vec2 acrossPerPixel_m{s.across_px[i].x * s.depth_m[i] / K.fx_px,
                                          s.across_px[i].y * s.depth_m[i] / K.fy_px};
         s.width_m[i] = s.width_px[i] * glm::length(acrossPerPixel_m);
+    }
+    s.acrossStep_m.assign(static_cast<std::size_t>(n), glm::vec3(0.f));
+    for (int i = 0; i < n; ++i) {
+        const float slope = acrossDepthSlope_mPerPx(frame, blade, s.midline_px[i], s.across_px[i],
+                                                    s.width_px[i], s.depth_m[i], params);
+        if (std::isfinite(slope))
+            s.acrossStep_m[i] = {s.across_px[i].x * s.depth_m[i] / K.fx_px,
+                                 s.across_px[i].y * s.depth_m[i] / K.fy_px, slope};
     }
     s.arcFraction.assign(static_cast<std::size_t>(n), 0.f);
     for (int i = 1; i < n; ++i)

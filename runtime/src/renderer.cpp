@@ -54,10 +54,11 @@ struct Renderer::Impl {
     std::unique_ptr<BladeComputePass> physics, culling;
     float previousTime_s = -1.f;
 
-    Impl(GlContext& c, const SceneDescription& s)
+    Impl(GlContext& c, const SceneDescription& s) : Impl(c, s, buildSceneBlades(s)) {}
+    Impl(GlContext& c, const SceneDescription& s, SceneBlades b)
         : context(c),
           scene(s),
-          blades(buildSceneBlades(s)),
+          blades(std::move(b)),
           gpu(uploadScene(blades, s)),
           draw(s.render.width_px, s.render.height_px, s.render.msaaSamples),
           slots(draw.width_px(), draw.height_px()) {
@@ -71,6 +72,8 @@ struct Renderer::Impl {
 
 Renderer::Renderer(GlContext& context, const SceneDescription& scene)
     : impl_(std::make_unique<Impl>(context, scene)) {}
+Renderer::Renderer(GlContext& context, const SceneDescription& scene, SceneBlades blades)
+    : impl_(std::make_unique<Impl>(context, scene, std::move(blades))) {}
 Renderer::~Renderer() = default;
 
 std::size_t Renderer::bladeCount() const { return impl_->gpu.bladeCount; }

@@ -16,6 +16,12 @@
 namespace meadow::runtime {
 namespace {
 
+static_assert(BLADE_SHAPE_ONE_SIDED_QUADRATIC ==
+                      static_cast<int>(modeling::AnalyticShape::OneSidedQuadratic) &&
+                  BLADE_SHAPE_TRIANGLE_TIP ==
+                      static_cast<int>(modeling::AnalyticShape::TriangleTip),
+              "shaders/shared/blade_types.h numbers the shapes as modeling::AnalyticShape does");
+
 constexpr float kTwoPi = 6.28318530718f;
 // Dart throwing gives up after this many rejected candidates per wanted tuft (the surface is
 // then saturated at the Poisson-disk spacing).
@@ -315,6 +321,7 @@ gpu::ArchetypeGpu archetypeForGpu(const modeling::Archetype& archetype, bool use
     }
     g.shape = glm::vec4(static_cast<float>(archetype.nearestShape), archetype.tau,
                         useProfile ? 1.f : 0.f, 0.f);
+    g.sides = glm::vec4(archetype.leftWidthFraction, archetype.twistAtTip_rad, 0.f, 0.f);
     return g;
 }
 

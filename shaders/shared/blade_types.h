@@ -38,6 +38,7 @@ using mat4 = glm::mat4;
 #define BLADE_SHAPE_TRIANGLE 1
 #define BLADE_SHAPE_QUADRATIC 2
 #define BLADE_SHAPE_TRIANGLE_TIP 3
+#define BLADE_SHAPE_ONE_SIDED_QUADRATIC 4
 
 // Samples of an archetype's width profile over normalised length (t = i / (N - 1)).
 #define ARCHETYPE_WIDTH_SAMPLES 16
@@ -58,11 +59,14 @@ struct BladeRestGpu {
 };
 
 // One archetype as the renderer uses it: the width profile (relative to the blade's width,
-// 1 = widest) and the nearest analytic shape for the tessellation fallback.
+// 1 = widest), the nearest analytic shape for the tessellation fallback, and how the width sits
+// about the spine.
 struct ArchetypeGpu {
     vec4 widthProfile[ARCHETYPE_WIDTH_SAMPLES / 4];
     vec4 shape;  // x analytic shape id (BLADE_SHAPE_*), y tau (triangle-tip), z 1 = draw with
                  // widthProfile, 0 = with the analytic shape, w unused
+    vec4 sides;  // x share of the width left of the spine (0.5 symmetric), y twist at the tip
+                 // about the spine (rad), zw unused
 };
 
 // glDrawArraysIndirect's command: the culling pass writes vertexCount (one patch vertex per
@@ -108,7 +112,7 @@ struct FrameGpu {
 #ifdef __cplusplus
 static_assert(sizeof(BladeGpu) == 64 && offsetof(BladeGpu, up_direction) == 48);
 static_assert(sizeof(BladeRestGpu) == 32);
-static_assert(sizeof(ArchetypeGpu) == 80);
+static_assert(sizeof(ArchetypeGpu) == 96);
 static_assert(sizeof(DrawCommandGpu) == 16 && sizeof(CullStatsGpu) == 16);
 static_assert(sizeof(PatchGpu) == 48 && sizeof(ColliderGpu) == 16);
 static_assert(sizeof(FrameGpu) == 192 && offsetof(FrameGpu, cameraPosition_time) == 128);

@@ -200,7 +200,7 @@ std::vector<SynthPreset> makeCatalog() {
             TuftSpec spec = singleType(kBamboo, p);
             Rng rng(p.seed ^ 0xa5a5a5a5u);
             for (BladePlacement& b : spec.blades)
-                b.mesh.leftWidthFraction =
+                b.archetype.leftWidthFraction =
                     rng.chance(0.5f) ? rng.uniform(0.22f, 0.32f) : rng.uniform(0.68f, 0.78f);
             return spec;
         });
@@ -211,7 +211,7 @@ std::vector<SynthPreset> makeCatalog() {
             for (std::size_t i = 0; i < spec.blades.size(); i += 2) {
                 BladePlacement& b = spec.blades[i];
                 b.curlTowardCamera_rad = rng.uniform(deg(40), deg(65));
-                b.mesh.twistAtTip_rad =
+                b.archetype.twistAtTip_rad =
                     (rng.chance(0.5f) ? 1.f : -1.f) * rng.uniform(deg(50), deg(90));
             }
             return spec;

@@ -154,8 +154,8 @@ SynthTruthFrame truthOfFrame(const SyntheticTuft& tuft, int frameIndex) {
         b.width_m = blade.archetype.width.width_m;
         for (std::size_t i = 0; i < n; ++i)
             b.widthFraction.push_back(n < 2 ? 0.f : static_cast<float>(i) / (n - 1));
-        b.leftWidthFraction = blade.mesh.leftWidthFraction;
-        b.twistAtTip_rad = blade.mesh.twistAtTip_rad;
+        b.leftWidthFraction = blade.archetype.leftWidthFraction;
+        b.twistAtTip_rad = blade.archetype.twistAtTip_rad;
         const glm::mat3 rotation(blade.cameraFromBlade);
         const TriangleMesh local = bladeMesh(blade.archetype, blade.mesh);
         b.faceNormalCamera = glm::normalize(rotation * local.normals.front());

@@ -76,10 +76,10 @@ TEST(BladeMesh, WidthIsAcrossTheSpineInTheFacePlaneWithFaceNormalPlusZ) {
 }
 
 TEST(BladeMesh, LeftWidthFractionSplitsTheWidthUnevenly) {
-    const Archetype a = leaf();
+    Archetype a = leaf();
+    a.leftWidthFraction = 0.25f;
     BladeMeshOptions options;
     options.segments = 10;
-    options.leftWidthFraction = 0.25f;
     const TriangleMesh mesh = bladeMesh(a, options);
     for (int i = 0; i <= options.segments; ++i) {
         const float s = static_cast<float>(i) / options.segments;
@@ -89,15 +89,15 @@ TEST(BladeMesh, LeftWidthFractionSplitsTheWidthUnevenly) {
     }
     // Most of the width now lies on the inside of the bend (+X), where the ribbon is compressed
     // by the curvature: a little less area than the symmetric blade, never more.
-    const float symmetric_m2 = bladeMesh(a, {10, 0.5f, 0.f}).surfaceArea_m2();
+    const float symmetric_m2 = bladeMesh(leaf(), {10}).surfaceArea_m2();
     EXPECT_LT(mesh.surfaceArea_m2(), symmetric_m2);
     EXPECT_GT(mesh.surfaceArea_m2(), 0.95f * symmetric_m2);
 }
 
 TEST(BladeMesh, TwistTurnsTheTipOutOfTheFacePlaneButKeepsTheWidth) {
-    const Archetype a = leaf();
-    BladeMeshOptions options;
-    options.twistAtTip_rad = 1.0f;
+    Archetype a = leaf();
+    a.twistAtTip_rad = 1.0f;
+    const BladeMeshOptions options;
     const TriangleMesh mesh = bladeMesh(a, options);
     const int last = options.segments - 1;  // the tip ring has zero width
     const glm::vec3 across = mesh.positions_m[2 * last + 1] - mesh.positions_m[2 * last];
@@ -117,8 +117,10 @@ TEST(BladeMesh, TransformedMeshKeepsAreaAndUnitNormals) {
 
 TEST(BladeMesh, RejectsBrokenPreconditions) {
     Archetype a = leaf();
-    EXPECT_THROW((void)bladeMesh(a, {0, 0.5f, 0.f}), std::invalid_argument);
-    EXPECT_THROW((void)bladeMesh(a, {8, 1.5f, 0.f}), std::invalid_argument);
+    EXPECT_THROW((void)bladeMesh(a, {0}), std::invalid_argument);
+    Archetype lopsided = a;
+    lopsided.leftWidthFraction = 1.5f;
+    EXPECT_THROW((void)bladeMesh(lopsided, {8}), std::invalid_argument);
     a.spine_m = {};
     EXPECT_THROW((void)bladeMesh(a), std::invalid_argument);
 }

@@ -18,8 +18,9 @@ TEST(BladeLayout, BladeIsFourVec4sInPaperOrder) {
 
 TEST(BladeLayout, Std430SizesOfEveryBufferStruct) {
     EXPECT_EQ(sizeof(BladeRestGpu), 32u);
-    EXPECT_EQ(sizeof(ArchetypeGpu), 16u * (ARCHETYPE_WIDTH_SAMPLES / 4 + 1));
+    EXPECT_EQ(sizeof(ArchetypeGpu), 16u * (ARCHETYPE_WIDTH_SAMPLES / 4 + 2));
     EXPECT_EQ(offsetof(ArchetypeGpu, shape), 16u * (ARCHETYPE_WIDTH_SAMPLES / 4));
+    EXPECT_EQ(offsetof(ArchetypeGpu, sides), 16u * (ARCHETYPE_WIDTH_SAMPLES / 4 + 1));
     EXPECT_EQ(sizeof(DrawCommandGpu), 4u * sizeof(std::uint32_t))
         << "glDrawArraysIndirect reads four uints";
     EXPECT_EQ(sizeof(PatchGpu), 48u);

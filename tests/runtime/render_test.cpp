@@ -66,7 +66,7 @@ TEST(RenderGLTest, SameSceneRendersTheSameImageTwice) {
 
 TEST(RenderGLTest, EveryAnalyticShapeAndDisplacementDrawsGrass) {
     GlContext context;
-    for (int shape = 0; shape < 4; ++shape) {
+    for (int shape = 0; shape < 5; ++shape) {
         SceneDescription scene = tinyMeadow();
         scene.render.shapeOverride = shape;
         scene.render.displacement = shape % 2 == 1;

@@ -14,13 +14,17 @@
 
 namespace meadow::modeling {
 
-// Nearest analytic blade shape of Jahrmann & Wimmer 2017, Sec. 6.2 (their Fig. 6).
-enum class AnalyticShape { Quad, Triangle, Quadratic, TriangleTip };
-inline constexpr EnumNames<AnalyticShape, 4> kAnalyticShapeNames{{{
+// Analytic blade shapes of Jahrmann & Wimmer 2017, Sec. 6.2 (their Fig. 6). Quadratic is
+// meadow's symmetric variant (tip on the spine); OneSidedQuadratic is the paper's own quadratic,
+// one edge straight and the other curving in to meet it at the tip. Capture picks the nearest
+// of the symmetric ones; OneSidedQuadratic is for authored archetypes and scene overrides.
+enum class AnalyticShape { Quad, Triangle, Quadratic, TriangleTip, OneSidedQuadratic };
+inline constexpr EnumNames<AnalyticShape, 5> kAnalyticShapeNames{{{
     {AnalyticShape::Quad, "quad"},
     {AnalyticShape::Triangle, "triangle"},
     {AnalyticShape::Quadratic, "quadratic"},
     {AnalyticShape::TriangleTip, "triangle-tip"},
+    {AnalyticShape::OneSidedQuadratic, "one-sided-quadratic"},
 }}};
 inline std::string toString(AnalyticShape shape) {
     return std::string(kAnalyticShapeNames.name(shape));
@@ -55,6 +59,11 @@ struct FitReport {
     // Tip extension (blade_tip.h): length of the straight piece added past the visible tip, where
     // the tapering width's trend reaches zero (0: not extended).
     float tipExtension_mm = 0.f;
+    // Twist (blade_fit.h, fitTwist): points read across the blade behind it (0: not measured),
+    // and the base's tilt off the face plane the frame assumed; widths are scaled back up by
+    // how much of the face turned away from the camera.
+    int twistPoints = 0;
+    float baseTilt_deg = 0.f;
 };
 
 // One observation of a blade: the first frame of the fused group that saw it, and the blade's id
@@ -84,6 +93,12 @@ struct Archetype {
     WidthProfile width;
     AnalyticShape nearestShape = AnalyticShape::Quadratic;
     float tau = 0.5f;  // triangle-tip parameter (fraction of height where the tip begins)
+    // Share of the width on the blade's left side of the spine (local -X, away from the bend):
+    // 0.5 is symmetric, 0.3 puts 30 % left and 70 % right. In [0, 1].
+    float leftWidthFraction = 0.5f;
+    // Rotation of the width direction about the spine tangent at the tip (radians, right-handed
+    // about the tangent), growing linearly with arc length from 0 at the base.
+    float twistAtTip_rad = 0.f;
     FitReport fit;
     Source source;
     // Refined skeleton knots (Fan & Sheng 2017, Algorithm 1), blade-local frame, base to tip.

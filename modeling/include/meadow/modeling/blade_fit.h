@@ -87,6 +87,29 @@ struct ShapeFit {
 };
 ShapeFit nearestAnalyticShape(const WidthProfile& profile);
 
+// ---- Twist (blade_fit_twist.cpp) ---------------------------------------------------------
+// The face's turn about the spine, from the depth across the blade (Skeleton::acrossStep_m). At
+// each read point, in the blade-local frame, the angle of the across step about the spine
+// tangent T, from the ribbon's width direction W = normalize(T x Z) toward T x W (the sense of
+// blade_mesh.h's twist); a line through the angles over arc-length fraction s, fitted again
+// without outliers, gives the tilt at the base and the twist at the tip. Read only over enough
+// of the blade (thin blades, a few pixels wide, are not); a slope within two standard errors of
+// zero is no twist.
+struct TwistFit {
+    bool measured = false;
+    float baseTilt_rad = 0.f;    // the line at s = 0: the base's turn off the frame's face plane
+    float twistAtTip_rad = 0.f;  // the line's rise from s = 0 to 1; 0 when not significant
+    float rms_rad = 0.f;         // residual of the points kept
+    int points = 0;              // points kept
+    // Per skeleton point, the share of the fitted width direction that faces the camera (across
+    // the viewing ray), at least 0.35; all 1 when not measured. The contour shows width x facing.
+    std::vector<float> facing;
+};
+// `t`: each skeleton point's parameter on the spine; `s`: its arc-length fraction.
+TwistFit fitTwist(const Skeleton& skeleton, const BladeFrame& frame,
+                  const QuadraticBezier& localSpine, const std::vector<float>& t,
+                  const std::vector<float>& s);
+
 // ---- The whole fit (blade_fit.cpp) --------------------------------------------------------
 struct BladeFitParams {
     SkeletonParams skeleton;

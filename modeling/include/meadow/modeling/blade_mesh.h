@@ -6,12 +6,13 @@
 // fractions s_i = i / segments of the spine. Ring i holds two vertices, left then right:
 //   left_i  = B(t_i) - W_i * leftWidthFraction        * width(s_i)
 //   right_i = B(t_i) + W_i * (1 - leftWidthFraction) * width(s_i)
+// (the archetype's leftWidthFraction)
 // where B is the spine, t_i the Bézier parameter of s_i and W_i the unit width direction: in the
 // face plane (archetype.h), perpendicular to the spine tangent T_i, i.e. W = normalize(T x Z),
 // which is +X for a straight blade (the side it bends toward), then rotated about T_i by the
-// twist at s_i. Vertex normals are normalize(W x T): +Z (the archetype's face normal) for a flat
-// blade. Triangles wind counter-clockwise seen from the normal's side. Triangles of zero area
-// (at a zero-width tip or base) are left out.
+// twist at s_i (the archetype's twistAtTip_rad times s_i). Vertex normals are normalize(W x T): +Z
+// (the archetype's face normal) for a flat blade. Triangles wind counter-clockwise seen from the
+// normal's side. Triangles of zero area (at a zero-width tip or base) are left out.
 #include <cstdint>
 #include <glm/mat4x4.hpp>
 #include <glm/vec3.hpp>
@@ -35,16 +36,10 @@ struct BladeMeshOptions {
     // profile more closely (the profile is linear between its samples, so a multiple of its
     // sample count - 1 reproduces it exactly).
     int segments = 16;
-    // Share of the full width on the blade's left (-X, away from the bend) side of the spine:
-    // 0.5 is a symmetric blade; 0.3 puts 30 % left and 70 % right. In [0, 1].
-    float leftWidthFraction = 0.5f;
-    // Rotation of the width direction about the spine tangent at the tip (radians), growing
-    // linearly with arc length from 0 at the base: a blade that twists out of its face plane.
-    float twistAtTip_rad = 0.f;
 };
 
 // The archetype's ribbon in its blade-local frame. Throws std::invalid_argument on
-// segments < 1, leftWidthFraction outside [0, 1], or a spine of zero length.
+// segments < 1, an archetype leftWidthFraction outside [0, 1], or a spine of zero length.
 [[nodiscard]] TriangleMesh bladeMesh(const Archetype& archetype,
                                      const BladeMeshOptions& options = {});
 

@@ -49,6 +49,11 @@ struct Skeleton {
     std::vector<float> arcFraction;     // arc length from the base / total, along points_m
     std::vector<float> depth_m;         // depth used for each point (after hole filling)
     int filledDepths = 0;               // points whose depth came from neighbours on the chain
+    // Camera-space step of one pixel across the blade (side A -> side B) at each point: its
+    // lateral metres and the depth change over it, read as a line through the depths of the
+    // blade's pixels across its width there. It tells how the face tilts about the spine
+    // (blade_fit.h, fitTwist). Zero where the blade is too narrow or too sparsely read to tell.
+    std::vector<glm::vec3> acrossStep_m;
     // Symmetry diagnostics.
     float sideLengthRatio = 1.f;      // longer / shorter contour side
     float ridgeOffsetFraction = 0.f;  // see SkeletonParams::maxRidgeOffsetFraction

@@ -13,6 +13,7 @@ namespace meadow::runtime {
 
 class GlContext;
 class BladeComputePass;  // runtime/src/renderer_passes.h
+struct SceneBlades;      // runtime/src/scene_gpu.h
 
 struct RenderedFrame {
     cv::Mat image_bgr;  // CV_8UC3, width x height of the scene (or the override)
@@ -24,6 +25,9 @@ public:
     // Loads meshes, seeds the blades, builds patches and uploads everything. `context` must
     // outlive the renderer and be current on this thread. Throws RuntimeError.
     Renderer(GlContext& context, const SceneDescription& scene);
+    // The same with blades the caller placed (runtime/src/scene_gpu.h) instead of the scene's
+    // seeding: tests and tools that need blades at known poses. The scene's meshes still load.
+    Renderer(GlContext& context, const SceneDescription& scene, SceneBlades blades);
     ~Renderer();
     Renderer(const Renderer&) = delete;
     Renderer& operator=(const Renderer&) = delete;
