@@ -114,6 +114,8 @@ void DrawPass::depthPrepass(const SceneGpu& gpu) const {
     glDepthFunc(GL_LESS);
     opaqueProgram_.use();
     for (const GpuMesh& m : gpu.meshes) {
+        if (!m.visible) continue;
+        opaqueProgram_.set("uOffset_m", m.offset_m);
         glBindVertexArray(m.vertexArray.id());
         glDrawElements(GL_TRIANGLES, m.indexCount, GL_UNSIGNED_INT, nullptr);
     }
@@ -136,7 +138,9 @@ void DrawPass::shadeOpaque(const SceneGpu& gpu, const SceneDescription& scene) c
     opaqueProgram_.use();
     opaqueProgram_.set("uAmbient", scene.light.ambient);
     for (const GpuMesh& m : gpu.meshes) {
+        if (!m.visible) continue;
         opaqueProgram_.set("uAlbedo", m.albedo);
+        opaqueProgram_.set("uOffset_m", m.offset_m);
         glBindVertexArray(m.vertexArray.id());
         glDrawElements(GL_TRIANGLES, m.indexCount, GL_UNSIGNED_INT, nullptr);
     }

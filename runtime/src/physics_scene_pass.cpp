@@ -42,18 +42,28 @@ public:
     explicit PhysicsComputePass(GlContext& context) : pass_(context) {}
 
     void run(const PassInputs& in) override {
-        spheres_.clear();
-        for (const ColliderDescription& c : in.scene.colliders)
-            spheres_.push_back({c.center_m + c.velocity_m_s * in.time_s, c.radius_m});
         const PhysicsSubsteps steps = physicsSubsteps(in.scene.blades.stiffness.y, in.deltaTime_s);
         const PhysicsSettings settings = physicsSettingsOf(in.scene, in.frame);
         const float start_s = in.time_s - static_cast<float>(steps.count) * steps.step_s;
-        for (int k = 1; k <= steps.count; ++k)
+        for (int k = 1; k <= steps.count; ++k) {
+            const float t_s = start_s + static_cast<float>(k) * steps.step_s;
+            placeSpheres(in, t_s);
             pass_.dispatch(in.gpu.blades, in.gpu.rests, in.gpu.bladeCount, spheres_, settings,
-                           steps.step_s, start_s + static_cast<float>(k) * steps.step_s);
+                           steps.step_s, t_s);
+        }
     }
 
 private:
+    // Every collider's spheres where the collider is at time t_s (it may move between sub-steps).
+    void placeSpheres(const PassInputs& in, float t_s) {
+        spheres_.clear();
+        for (std::size_t i = 0; i < in.gpu.colliderSpheres.size(); ++i) {
+            const glm::vec3 at = in.scene.colliders[i].positionAt(t_s);
+            for (const CollisionSphere& s : in.gpu.colliderSpheres[i])
+                spheres_.push_back({at + s.center_m, s.radius_m});
+        }
+    }
+
     PhysicsPass pass_;
     std::vector<CollisionSphere> spheres_;
 };

@@ -108,6 +108,7 @@ FrameStats Renderer::Impl::recordFrame(int frameIndex, StageTimers& frameTimers)
     const float pixelSize_perM = 2.f / (clipFromView[1][1] * static_cast<float>(draw.height_px()));
 
     frameTimers.reset();
+    gpu.placeColliders(scene, time_s);
     gpu.bindAll();
     draw.begin(scene.light.skyColor);
     frameTimers.time(kPrepass, [&] {

@@ -2,6 +2,7 @@
 #include "meadow/runtime/scene.h"
 
 #include <cmath>
+#include <glm/common.hpp>
 #include <limits>
 #include <nlohmann/json.hpp>
 #include <set>
@@ -219,15 +220,50 @@ void readWind(const JsonReader& w, WindDescription& wind) {
     wind.turbulenceSize_m = w.floatNumber("turbulence_size_m", wind.turbulenceSize_m, 1e-2f, 1e5f);
 }
 
-void readColliders(const JsonReader& root, std::vector<ColliderDescription>& colliders) {
+// A mesh collider's spheres: at most this many (each costs every blade a test each step).
+constexpr int kMaxColliderSpheres = 256;
+
+void readColliders(const JsonReader& root, std::vector<ColliderDescription>& colliders,
+                   const fs::path& origin) {
     if (!root.has("colliders")) return;
     const json& list = root.array("colliders");
     for (std::size_t i = 0; i < list.size(); ++i) {
         const JsonReader k(list[i], elementPath("colliders", i));
-        k.onlyKeys({"center_m", "radius_m", "velocity_m_s"});
-        colliders.push_back({position(k, "center_m", {}),
-                             k.floatNumber("radius_m", 0.2f, 1e-4f, 1e4f),
-                             k.vec3("velocity_m_s", {})});
+        k.onlyKeys({"center_m", "radius_m", "velocity_m_s", "path", "gltf", "spheres", "visible",
+                    "albedo"});
+        ColliderDescription c;
+        c.center_m = position(k, "center_m", {});
+        if (k.has("gltf")) {
+            if (k.has("radius_m"))
+                k.fail("radius_m",
+                       "belongs to a sphere collider; a mesh collider's size is its mesh");
+            c.gltf = sceneFilePath(k, "gltf", origin);
+            c.maxSpheres = k.integer("spheres", c.maxSpheres, 1, kMaxColliderSpheres);
+        } else {
+            if (k.has("spheres")) k.fail("spheres", "belongs to a mesh collider (with gltf)");
+            c.radius_m = k.floatNumber("radius_m", c.radius_m, 1e-4f, 1e4f);
+        }
+        if (k.has("path")) {
+            if (k.has("velocity_m_s") || k.has("center_m"))
+                k.fail("path", "give either center_m/velocity_m_s or path, not both");
+            const json& path = k.array("path");
+            if (path.empty()) k.fail("path", "expected a non-empty array");
+            for (std::size_t j = 0; j < path.size(); ++j) {
+                const JsonReader key(path[j], elementPath(k.pathOf("path"), j));
+                key.onlyKeys({"time_s", "position_m"});
+                const ColliderKey ck{key.floatNumber("time_s", 0.f, 0.f, 1e6f),
+                                     position(key, "position_m", {})};
+                if (!c.path.empty() && !(ck.time_s > c.path.back().time_s))
+                    key.fail("time_s", "keys must be in increasing time");
+                c.path.push_back(ck);
+            }
+            c.center_m = c.path.front().position_m;
+        } else {
+            c.velocity_m_s = k.vec3("velocity_m_s", {});
+        }
+        c.visible = k.boolean("visible", c.visible);
+        c.albedo = k.vec3("albedo", c.albedo);
+        colliders.push_back(std::move(c));
     }
 }
 
@@ -298,6 +334,17 @@ void readRender(const JsonReader& v, RenderSettings& rs) {
 
 }  // namespace
 
+glm::vec3 ColliderDescription::positionAt(float time_s) const {
+    if (path.empty()) return center_m + velocity_m_s * time_s;
+    if (time_s <= path.front().time_s) return path.front().position_m;
+    for (std::size_t i = 1; i < path.size(); ++i)
+        if (time_s <= path[i].time_s) {
+            const float f = (time_s - path[i - 1].time_s) / (path[i].time_s - path[i - 1].time_s);
+            return glm::mix(path[i - 1].position_m, path[i].position_m, f);
+        }
+    return path.back().position_m;
+}
+
 SceneDescription parseSceneDescription(const std::string& jsonText, const fs::path& origin) {
     SceneDescription scene;
     scene.file = origin;
@@ -316,7 +363,7 @@ SceneDescription parseSceneDescription(const std::string& jsonText, const fs::pa
         readCamera(section(root, "camera"), scene.camera);
         readLight(section(root, "light"), scene.light);
         readWind(section(root, "wind"), scene.wind);
-        readColliders(root, scene.colliders);
+        readColliders(root, scene.colliders, origin);
         readPhysics(section(root, "physics"), scene.physics);
         readCulling(section(root, "culling"), scene.culling);
         readRender(section(root, "render"), scene.render);

@@ -92,6 +92,7 @@ SceneBlades buildSceneBlades(const SceneDescription& scene) {
     // taper; otherwise the nearest analytic shape is.
     for (const modeling::Archetype& a : scene.archetypes)
         out.archetypes.push_back(archetypeForGpu(a, a.width.width_m.size() > 2));
+    for (const ColliderDescription& c : scene.colliders) out.colliders.push_back(colliderShape(c));
     return out;
 }
 
@@ -99,7 +100,6 @@ SceneGpu uploadScene(const SceneBlades& b, const SceneDescription& scene) {
     SceneGpu g;
     g.bladeCount = static_cast<std::uint32_t>(b.blades.size());
     g.patchCount = static_cast<std::uint32_t>(b.patches.size());
-    g.colliderCount = static_cast<std::uint32_t>(scene.colliders.size());
     g.blades = bufferOf(b.blades);
     g.rests = bufferOf(b.rests);
     g.archetypes = bufferOf(b.archetypes);
@@ -109,15 +109,18 @@ SceneGpu uploadScene(const SceneBlades& b, const SceneDescription& scene) {
     g.drawCommand = bufferOf(std::vector<gpu::DrawCommandGpu>{{g.bladeCount, 1u, 0u, 0u}});
     g.cullStats = bufferOf(std::vector<gpu::CullStatsGpu>{{0u, 0u, 0u, 0u}});
     g.patches = bufferOf(b.patches);
-    std::vector<gpu::ColliderGpu> colliders;
-    for (const ColliderDescription& c : scene.colliders)
-        colliders.push_back({glm::vec4(c.center_m, c.radius_m)});
-    g.colliders = bufferOf(colliders);
     g.frame = bufferOf(std::vector<gpu::FrameGpu>(1));
     for (std::size_t i = 0; i < b.grassMeshes.size(); ++i)
         g.meshes.push_back(uploadMesh(b.grassMeshes[i], scene.grassMeshes[i].albedo));
     for (std::size_t i = 0; i < b.props.size(); ++i)
         g.meshes.push_back(uploadMesh(b.props[i], scene.props[i].albedo));
+    g.firstColliderMesh = g.meshes.size();
+    for (std::size_t i = 0; i < b.colliders.size() && i < scene.colliders.size(); ++i) {
+        g.meshes.push_back(uploadMesh(b.colliders[i].mesh, scene.colliders[i].albedo));
+        g.meshes.back().visible = scene.colliders[i].visible;
+        g.colliderSpheres.push_back(b.colliders[i].spheres);
+    }
+    g.placeColliders(scene, 0.f);
     return g;
 }
 
@@ -129,8 +132,12 @@ void SceneGpu::bindAll() const {
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, DRAW_COMMAND_SSBO_BINDING, drawCommand.id());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, CULL_STATS_SSBO_BINDING, cullStats.id());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, PATCH_SSBO_BINDING, patches.id());
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, COLLIDER_SSBO_BINDING, colliders.id());
     glBindBufferBase(GL_UNIFORM_BUFFER, FRAME_UBO_BINDING, frame.id());
+}
+
+void SceneGpu::placeColliders(const SceneDescription& scene, float time_s) {
+    for (std::size_t i = 0; i < colliderSpheres.size(); ++i)
+        meshes[firstColliderMesh + i].offset_m = scene.colliders[i].positionAt(time_s);
 }
 
 void SceneGpu::fillTrivialVisibility() const {

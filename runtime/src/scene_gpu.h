@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "collider_shapes.h"
 #include "gl/gl_object.h"
 #include "meadow/runtime/scene.h"
 #include "scene_mesh.h"
@@ -25,6 +26,7 @@ struct SceneBlades {
     std::vector<gpu::ArchetypeGpu> archetypes;
     std::vector<gpu::PatchGpu> patches;
     std::size_t patchSize = 0;
+    std::vector<ColliderShape> colliders;  // one per scene collider, in its order
 };
 
 // The patch size of the scene rounded up to whole workgroups.
@@ -38,12 +40,13 @@ struct GpuMesh {
     gl::VertexArray vertexArray;
     GLsizei indexCount = 0;
     glm::vec3 albedo{0.f};
+    glm::vec3 offset_m{0.f};  // added to every vertex: where a collider has moved
+    bool visible = true;      // a hidden collider still pushes blades, it is not drawn
 };
 
 struct SceneGpu {
     std::uint32_t bladeCount = 0;
     std::uint32_t patchCount = 0;
-    std::uint32_t colliderCount = 0;
     gl::Buffer blades;          // BladeGpu[bladeCount]            BLADE_SSBO_BINDING
     gl::Buffer rests;           // BladeRestGpu[bladeCount]        BLADE_REST_SSBO_BINDING
     gl::Buffer archetypes;      // ArchetypeGpu[]                  ARCHETYPE_SSBO_BINDING
@@ -51,9 +54,14 @@ struct SceneGpu {
     gl::Buffer drawCommand;  // DrawCommandGpu                  DRAW_COMMAND_SSBO_BINDING + indirect
     gl::Buffer cullStats;    // CullStatsGpu                    CULL_STATS_SSBO_BINDING
     gl::Buffer patches;      // PatchGpu[patchCount]            PATCH_SSBO_BINDING
-    gl::Buffer colliders;    // ColliderGpu[max(1, count)]      COLLIDER_SSBO_BINDING
     gl::Buffer frame;        // FrameGpu                        FRAME_UBO_BINDING
-    std::vector<GpuMesh> meshes;  // grass ground first, then props
+    std::vector<GpuMesh> meshes;  // grass ground first, then props, then colliders
+    std::size_t firstColliderMesh = 0;
+    // Each collider's spheres relative to its position (ColliderDescription::positionAt).
+    std::vector<std::vector<CollisionSphere>> colliderSpheres;
+
+    // Moves the colliders' meshes to where the scene's colliders are at time_s.
+    void placeColliders(const SceneDescription& scene, float time_s);
 
     // Binds every buffer at its binding point (each pass may rely on this after the call).
     void bindAll() const;

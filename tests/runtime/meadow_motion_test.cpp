@@ -126,5 +126,47 @@ TEST(MeadowMotion, BladesPressedFlatByAPassingColliderRecoverWithinThreeSeconds)
     EXPECT_LE(low, pressedCount / 10) << "blades still under 90 % of their height";
 }
 
+// The bundled scene's roller, a mesh collider packed into spheres, rolls along its path: after
+// 3 s, where it is at x = 0, the blades it has just rolled over (0.2-0.6 m behind it, within its
+// length) lie pressed, and blades a metre to either side of its path stand as before.
+TEST(MeadowMotion, TheBundledRollerLeavesATrailWhereItRollsAndNowhereElse) {
+    SceneDescription scene = bundledScene();
+    scene.wind.waveAmplitude_m_s = 0.f;
+    scene.wind.gustAmplitude_m_s = scene.wind.turbulenceAmplitude_m_s = 0.f;
+    SceneBlades blades = buildSceneBlades(scene);
+    ASSERT_EQ(blades.colliders.size(), 1u);
+    const ColliderShape& roller = blades.colliders.front();
+    ASSERT_GE(roller.spheres.size(), 3u) << "a capsule takes several spheres";
+    const ColliderDescription& path = scene.colliders.front();
+    const std::size_t n = blades.blades.size();
+    std::vector<float> restHeight(n);
+    for (std::size_t i = 0; i < n; ++i)
+        restHeight[i] = restTipHeight(blades.blades[i], blades.rests[i]);
+    constexpr int kFrames = 90;  // 3 s: the roller goes from x = -3 m to 0
+    for (int f = 1; f <= kFrames; ++f) {
+        const float t = static_cast<float>(f) * kFrame_s;
+        std::vector<CollisionSphere> spheres;
+        for (const CollisionSphere& s : roller.spheres)
+            spheres.push_back({path.positionAt(t) + s.center_m, s.radius_m});
+        stepFrame(blades, scene, t, spheres);
+    }
+    const glm::vec3 at = path.positionAt(static_cast<float>(kFrames) * kFrame_s);
+    double trail = 0.0, trailRest = 0.0, aside = 0.0, asideRest = 0.0;
+    int trailCount = 0, asideCount = 0;
+    for (std::size_t i = 0; i < n; ++i) {
+        const glm::vec3 root = glm::vec3(blades.blades[i].v0_height);
+        const float behind = at.x - root.x, across = std::abs(root.z - at.z);
+        if (behind > 0.2f && behind < 0.6f && across < 0.3f) {
+            trail += tipHeight(blades.blades[i]), trailRest += restHeight[i], ++trailCount;
+        } else if (behind > -0.5f && behind < 3.f && across > 1.f && across < 2.f) {
+            aside += tipHeight(blades.blades[i]), asideRest += restHeight[i], ++asideCount;
+        }
+    }
+    ASSERT_GE(trailCount, 10);
+    ASSERT_GE(asideCount, 100);
+    EXPECT_LT(trail / trailRest, 0.7) << trailCount << " blades in the trail";
+    EXPECT_GT(aside / asideRest, 0.9) << asideCount << " blades beside the path";
+}
+
 }  // namespace
 }  // namespace meadow::runtime

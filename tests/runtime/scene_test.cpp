@@ -68,3 +68,63 @@ TEST(SceneFile, BadFilesGiveOneClearLineNamingFileAndField) {
 
 }  // namespace
 }  // namespace meadow::runtime
+
+namespace meadow::runtime {
+namespace {
+
+TEST(SceneFile, MeshCollidersFollowTheirPathAndSpheresTheirVelocity) {
+    const auto dir = test::freshTestDirectory("scene_colliders");
+    test::writeQuad(dir / "ground.gltf", 0, 1, 0, 1);
+    const nlohmann::json scene = test::minimalScene(
+        "ground.gltf",
+        {{"colliders",
+          {{{"gltf", "ground.gltf"},
+            {"spheres", 8},
+            {"visible", false},
+            {"path",
+             {{{"time_s", 1}, {"position_m", {0, 0, 0}}},
+              {{"time_s", 3}, {"position_m", {2, 0, 4}}}}}},
+           {{"center_m", {1, 0.3, 0}}, {"radius_m", 0.3}, {"velocity_m_s", {0.5, 0, 0}}}}}});
+    const SceneDescription s = loadSceneDescription(test::writeScene(dir, scene));
+    ASSERT_EQ(s.colliders.size(), 2u);
+    const ColliderDescription& mesh = s.colliders[0];
+    ASSERT_TRUE(mesh.gltf.has_value());
+    EXPECT_EQ(mesh.gltf->filename(), "ground.gltf");
+    EXPECT_TRUE(mesh.gltf->is_absolute() || mesh.gltf->parent_path() == dir);
+    EXPECT_EQ(mesh.maxSpheres, 8);
+    EXPECT_FALSE(mesh.visible);
+    EXPECT_EQ(mesh.positionAt(0.f), glm::vec3(0, 0, 0));  // held before the first key
+    EXPECT_EQ(mesh.positionAt(2.f), glm::vec3(1, 0, 2));
+    EXPECT_EQ(mesh.positionAt(9.f), glm::vec3(2, 0, 4));  // and after the last
+    const ColliderDescription& sphere = s.colliders[1];
+    EXPECT_FALSE(sphere.gltf.has_value());
+    EXPECT_TRUE(sphere.visible);
+    EXPECT_EQ(sphere.positionAt(2.f), glm::vec3(2, 0.3f, 0));
+}
+
+TEST(SceneFile, CollidersThatMixSphereMeshAndMotionFieldsAreRefused) {
+    const auto dir = test::freshTestDirectory("scene_collider_errors");
+    test::writeQuad(dir / "ground.gltf", 0, 1, 0, 1);
+    const nlohmann::json key = {{"time_s", 0}, {"position_m", {0, 0, 0}}};
+    const nlohmann::json later = {{"time_s", 0}, {"position_m", {1, 0, 0}}};
+    struct Case {
+        nlohmann::json collider;
+        std::string expected;
+    };
+    for (const Case& c : {
+             Case{{{"gltf", "ground.gltf"}, {"radius_m", 0.2}}, "colliders[0].radius_m"},
+             Case{{{"radius_m", 0.2}, {"spheres", 4}}, "colliders[0].spheres"},
+             Case{{{"velocity_m_s", {1, 0, 0}}, {"path", {key}}}, "not both"},
+             Case{{{"path", {key, later}}}, "increasing time"},
+             Case{{{"gltf", "ground.gltf"}, {"spheres", 1000}}, "colliders[0].spheres"},
+         }) {
+        const std::string message =
+            errorOf(dir, test::minimalScene("ground.gltf", {{"colliders", {c.collider}}}));
+        EXPECT_NE(message.find(c.expected), std::string::npos)
+            << c.collider.dump() << " gave: " << message;
+        EXPECT_EQ(message.find('\n'), std::string::npos) << message;
+    }
+}
+
+}  // namespace
+}  // namespace meadow::runtime

@@ -92,10 +92,28 @@ struct WindDescription {
     float turbulenceSize_m = PhysicsSettings{}.windTurbulenceSize_m;
 };
 
+// Where a moving collider is at a time (a camera path's keys without a target).
+struct ColliderKey {
+    float time_s = 0.f;
+    glm::vec3 position_m{0.f};
+};
+
+// Something that presses blades: a sphere, or a closed glTF mesh approximated by spheres
+// (runtime/src/sphere_packing.h). It moves linearly with a velocity or along a path of keys, and
+// is drawn as an opaque mesh unless hidden.
 struct ColliderDescription {
-    glm::vec3 center_m{0.f};
-    float radius_m = 0.2f;
-    glm::vec3 velocity_m_s{0.f};  // the centre moves linearly with time
+    glm::vec3 center_m{0.f};  // the sphere's centre, or where the mesh's origin is placed
+    float radius_m = 0.2f;    // sphere only
+    glm::vec3 velocity_m_s{0.f};
+    std::vector<ColliderKey> path;              // instead of center_m + velocity: linear between
+    std::optional<std::filesystem::path> gltf;  // a mesh collider, resolved against the scene
+    int maxSpheres = 32;                        // a mesh collider's sphere budget
+    bool visible = true;
+    glm::vec3 albedo{0.42f, 0.36f, 0.3f};
+
+    // Where center_m has moved to at time_s: along the path (held before its first and after its
+    // last key), or center_m + velocity_m_s * time_s.
+    [[nodiscard]] glm::vec3 positionAt(float time_s) const;
 };
 
 // Environmental gravity, Eq. (3): direction D and centre C, blended by gravityCenterMix (t).
