@@ -37,17 +37,24 @@ sigset_t cleanupSignals() {
     return set;
 }
 
+// Called once, on the way out. The lock is never released: a thread still writing blocks in
+// registerTemporary instead of creating a temporary nobody would remove. Each temporary is
+// first renamed, so a thread writing into a staged folder by its old name cannot put a file
+// back into it while it is being removed.
 void removeRegistered() {
     Registry& r = registry();
-    const std::lock_guard<std::mutex> lock(r.mutex);
+    r.mutex.lock();
     for (const auto& [path, restoreTo] : r.paths) {
         std::error_code ignored;
-        if (!restoreTo.empty() && !fs::exists(fs::symlink_status(restoreTo, ignored)))
+        if (!restoreTo.empty() && !fs::exists(fs::symlink_status(restoreTo, ignored))) {
             fs::rename(path, restoreTo, ignored);
-        else
-            fs::remove_all(path, ignored);
+            continue;
+        }
+        fs::path going = path;
+        going += ".gone";
+        fs::rename(path, going, ignored);
+        fs::remove_all(ignored ? path : going, ignored);
     }
-    r.paths.clear();
 }
 
 // Waits for the blocked signals; on one, removes the temporaries and ends the process by it.
