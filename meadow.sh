@@ -20,6 +20,7 @@ packages=(
   libegl-dev libgl-dev libopengl-dev libegl-mesa0 libgl1-mesa-dri
   libgtest-dev libgmock-dev libbenchmark-dev
   gnuplot-nox
+  libglfw3-dev xvfb xauth ffmpeg
 )
 # Only `fuzz` needs clang and libFuzzer.
 fuzz_packages=(clang libclang-rt-14-dev)

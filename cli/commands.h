@@ -12,5 +12,7 @@ void addConvertCommand(CLI::App& app);
 void addSynthCommand(CLI::App& app);
 // meadow render SCENE --out DIR [--frames N] [--size WxH] (render_command.cpp)
 void addRenderCommand(CLI::App& app);
+// meadow view SCENE [--library LIB] [--size WxH] (view_command.cpp)
+void addViewCommand(CLI::App& app);
 
 }  // namespace meadow::cli

@@ -26,6 +26,7 @@ int main(int argc, char** argv) {
     meadow::cli::addConvertCommand(app);
     meadow::cli::addSynthCommand(app);
     meadow::cli::addRenderCommand(app);
+    meadow::cli::addViewCommand(app);
 
     try {
         app.parse(argc, argv);

@@ -184,13 +184,21 @@ void DrawPass::drawBlades(const SceneGpu& gpu, const SceneDescription& scene,
     glMemoryBarrier(GL_COMMAND_BARRIER_BIT);
     bladeProgram_.use();
     glBindBuffer(GL_DRAW_INDIRECT_BUFFER, chunks_.id());
+    if (wireframe_) glPolygonMode(GL_FRONT_AND_BACK, GL_LINE);
     glMultiDrawArraysIndirect(GL_PATCHES, nullptr, static_cast<GLsizei>(chunkCount), 0);
+    if (wireframe_) glPolygonMode(GL_FRONT_AND_BACK, GL_FILL);
     glBindBuffer(GL_DRAW_INDIRECT_BUFFER, 0);
 }
 
 void DrawPass::resolveColor() const {
     glBlitNamedFramebuffer(msaaTarget_.id(), resolvedColorTarget_.id(), 0, 0, width_, height_, 0, 0,
                            width_, height_, GL_COLOR_BUFFER_BIT, GL_NEAREST);
+}
+
+void DrawPass::blitToDefaultFramebuffer(int width_px, int height_px) const {
+    const bool sameSize = width_px == width_ && height_px == height_;
+    glBlitNamedFramebuffer(resolvedColorTarget_.id(), 0, 0, 0, width_, height_, 0, 0, width_px,
+                           height_px, GL_COLOR_BUFFER_BIT, sameSize ? GL_NEAREST : GL_LINEAR);
 }
 
 cv::Mat bgrFromBottomUpRgba(const void* rgba, int width_px, int height_px) {

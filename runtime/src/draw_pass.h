@@ -1,7 +1,7 @@
 #pragma once
 // The raster half of a frame: multisampled colour + depth target, depth pre-pass and shading of
-// the opaque meshes, tessellated blades from the indirect draw command, MSAA resolve and
-// read-back.
+// the opaque meshes, tessellated blades from the indirect draw command, MSAA resolve, and
+// read-back or a copy into a window.
 #include <opencv2/core/mat.hpp>
 
 #include "gl/gl_object.h"
@@ -29,6 +29,11 @@ public:
     void drawBlades(const SceneGpu& gpu, const SceneDescription& scene, float pixelSize_perM);
     void resolveColor() const;
     [[nodiscard]] cv::Mat readBack() const;  // CV_8UC3 BGR, top row first; waits for the GPU
+    // Copies the resolved image into the current context's default framebuffer, scaled to
+    // width_px x height_px.
+    void blitToDefaultFramebuffer(int width_px, int height_px) const;
+    // Blades as the edges of their triangles (glPolygonMode); the opaque meshes stay filled.
+    void setWireframe(bool enabled) { wireframe_ = enabled; }
     // Queues a copy of the resolved image into `pixelPack` (RGBA8 rows, bottom first, at least
     // 4 * width * height bytes) on the GPU; read it once the frame's fence has signalled.
     void packColor(const gl::Buffer& pixelPack) const;
@@ -47,6 +52,7 @@ private:
     gl::Buffer chunks_;  // DrawCommandGpu[chunkCapacity_]
     std::uint32_t chunkCapacity_ = 0;
     gl::VertexArray emptyVertexArray_;  // the blade draw has no vertex attributes
+    bool wireframe_ = false;
 };
 
 }  // namespace meadow::runtime

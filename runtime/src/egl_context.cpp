@@ -1,4 +1,4 @@
-// Headless EGL + OpenGL 4.5 core context (see gl_context.h).
+// Headless EGL + OpenGL 4.5 core context, or an adopted window context (see gl_context.h).
 #include <EGL/egl.h>
 #include <EGL/eglext.h>
 
@@ -155,6 +155,9 @@ struct GlContext::Impl {
         return true;
     }
 
+    // Reads the current context's strings, checks it offers 4.5 and turns debug output on.
+    void describeCurrent(GlContextOptions options);
+
     static void APIENTRY onDebugMessage(GLenum /*source*/, GLenum type, GLuint /*id*/,
                                         GLenum severity, GLsizei length, const GLchar* message,
                                         const void* user) {
@@ -182,30 +185,47 @@ GlContext::GlContext(GlContextOptions options) : impl_(std::make_unique<Impl>())
                            std::to_string(kGlMinorVersion) + " core (" +
                            std::to_string(displays.size()) + " displays tried:" + why + "); " +
                            kInstallHint);
+    impl_->describeCurrent(options);
+}
 
+GlContext::GlContext(AdoptCurrentTag, GlContextOptions options) : impl_(std::make_unique<Impl>()) {
+    // Without a current context GLVND's dispatch answers every query with 0.
+    if (!glGetString(GL_VERSION))
+        throw RuntimeError(
+            "GlContext::adoptCurrent: no OpenGL context is current on this thread; make the "
+            "window's context current first");
+    impl_->describeCurrent(options);
+}
+
+GlContext GlContext::adoptCurrent(GlContextOptions options) {
+    return GlContext(AdoptCurrentTag{}, options);
+}
+
+void GlContext::Impl::describeCurrent(GlContextOptions options) {
     auto glString = [](GLenum name) {
         const GLubyte* s = glGetString(name);
         return s ? std::string(reinterpret_cast<const char*>(s)) : std::string("unknown");
     };
-    impl_->vendor = glString(GL_VENDOR);
-    impl_->renderer = glString(GL_RENDERER);
-    impl_->version = glString(GL_VERSION);
+    vendor = glString(GL_VENDOR);
+    renderer = glString(GL_RENDERER);
+    version = glString(GL_VERSION);
     GLint major = 0, minor = 0;
     glGetIntegerv(GL_MAJOR_VERSION, &major);
     glGetIntegerv(GL_MINOR_VERSION, &minor);
     if (major * 10 + minor < kGlMajorVersion * 10 + kGlMinorVersion)
-        throw RuntimeError("driver '" + impl_->renderer + "' gives OpenGL " + impl_->version +
+        throw RuntimeError("driver '" + renderer + "' gives OpenGL " + version +
                            ", meadow needs 4.5 core; " + kInstallHint);
     if (options.debugOutput) {
-        impl_->debugOutput = true;
+        debugOutput = true;
         glEnable(GL_DEBUG_OUTPUT);
         glEnable(GL_DEBUG_OUTPUT_SYNCHRONOUS);  // so an error names the call that caused it
-        glDebugMessageCallback(&Impl::onDebugMessage, impl_.get());
+        glDebugMessageCallback(&Impl::onDebugMessage, this);
     }
 }
 
 GlContext::~GlContext() {
     if (impl_->debugOutput) glDebugMessageCallback(nullptr, nullptr);
+    if (impl_->context == EGL_NO_CONTEXT) return;  // adopted: its window destroys it
     eglMakeCurrent(impl_->display, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
     eglDestroyContext(impl_->display, impl_->context);
     // The display is not terminated: EGL displays are shared per process, and terminating one

@@ -3,7 +3,9 @@
 #include <chrono>
 #include <cmath>
 #include <glm/gtc/matrix_transform.hpp>
+#include <numeric>
 #include <stdexcept>
+#include <vector>
 
 #include "draw_pass.h"
 #include "frame_slots.h"
@@ -16,10 +18,6 @@
 namespace meadow::runtime {
 namespace {
 
-struct CameraPose {
-    glm::vec3 position_m, target_m;
-};
-
 // Linear interpolation along the key frames, held constant before the first and after the last.
 CameraPose cameraAt(const CameraDescription& camera, float time_s) {
     const auto& path = camera.path;
@@ -31,6 +29,15 @@ CameraPose cameraAt(const CameraDescription& camera, float time_s) {
                     glm::mix(path[i - 1].target_m, path[i].target_m, f)};
         }
     return {path.back().position_m, path.back().target_m};
+}
+
+// A culling pass compacts the visible blades to the front of the index buffer; drawing all of
+// them again needs every index back in place.
+void restoreAllVisible(const SceneGpu& gpu) {
+    std::vector<std::uint32_t> all(gpu.bladeCount);
+    std::iota(all.begin(), all.end(), 0u);
+    glNamedBufferSubData(gpu.visibleIndices.id(), 0,
+                         static_cast<GLsizeiptr>(all.size() * sizeof(std::uint32_t)), all.data());
 }
 
 glm::mat4 viewFromWorldOf(const CameraPose& pose) {
@@ -53,6 +60,9 @@ struct Renderer::Impl {
     FrameSlots slots;    // renderFrames'
     std::unique_ptr<BladeComputePass> physics, culling;
     float previousTime_s = -1.f;
+    bool cullingEnabled = true;
+    bool visibleIndicesAreAll = true;  // false once a culling pass has compacted them
+    int viewFrames = 0;                // renderView's calls so far
 
     Impl(GlContext& c, const SceneDescription& s) : Impl(c, s, buildSceneBlades(s)) {}
     Impl(GlContext& c, const SceneDescription& s, SceneBlades b)
@@ -68,6 +78,11 @@ struct Renderer::Impl {
     // Issues every GL command of frame `frameIndex` up to the MSAA resolve, timed by `frameTimers`,
     // and returns the CPU-side part of its stats (frame, time, blade total). Reads nothing back.
     FrameStats recordFrame(int frameIndex, StageTimers& frameTimers);
+    // The same for any camera and clock; stats.frame is left 0.
+    FrameStats recordFrameAt(const CameraPose& pose, float time_s, float deltaTime_s,
+                             StageTimers& frameTimers);
+    // The counts of the frame just recorded (waits for the GPU).
+    void readCounts(FrameStats& stats) const;
 };
 
 Renderer::Renderer(GlContext& context, const SceneDescription& scene)
@@ -84,13 +99,20 @@ void Renderer::setPhysicsPass(std::unique_ptr<BladeComputePass> pass) {
 void Renderer::setCullingPass(std::unique_ptr<BladeComputePass> pass) {
     impl_->culling = std::move(pass);
 }
+void Renderer::setCullingEnabled(bool enabled) { impl_->cullingEnabled = enabled; }
+void Renderer::setWireframe(bool enabled) { impl_->draw.setWireframe(enabled); }
 
 FrameStats Renderer::Impl::recordFrame(int frameIndex, StageTimers& frameTimers) {
     const float time_s = static_cast<float>(frameIndex) / scene.render.frameRate_hz;
     const float deltaTime_s = previousTime_s < 0.f ? 0.f : time_s - previousTime_s;
-    previousTime_s = time_s;
+    FrameStats st = recordFrameAt(cameraAt(scene.camera, time_s), time_s, deltaTime_s, frameTimers);
+    st.frame = frameIndex;
+    return st;
+}
 
-    const CameraPose pose = cameraAt(scene.camera, time_s);
+FrameStats Renderer::Impl::recordFrameAt(const CameraPose& pose, float time_s, float deltaTime_s,
+                                         StageTimers& frameTimers) {
+    previousTime_s = time_s;
     const float aspect = static_cast<float>(draw.width_px()) / static_cast<float>(draw.height_px());
     const glm::mat4 clipFromView =
         glm::perspective(glm::radians(scene.camera.verticalFov_deg), aspect, scene.camera.near_m,
@@ -117,10 +139,16 @@ FrameStats Renderer::Impl::recordFrame(int frameIndex, StageTimers& frameTimers)
     });
     const PassInputs inputs{scene, gpu, frame, draw.depthTexture(), time_s, deltaTime_s};
     if (physics && scene.physics.enabled) frameTimers.time(kPhysics, [&] { physics->run(inputs); });
-    if (culling)
+    if (culling && cullingEnabled) {
         frameTimers.time(kCulling, [&] { culling->run(inputs); });
-    else
+        visibleIndicesAreAll = false;
+    } else {
+        if (!visibleIndicesAreAll) {
+            restoreAllVisible(gpu);
+            visibleIndicesAreAll = true;
+        }
         gpu.fillTrivialVisibility();
+    }
     gpu.bindAll();  // a pass may have bound other buffers
     frameTimers.time(kDraw, [&] {
         draw.shadeOpaque(gpu, scene);
@@ -129,10 +157,18 @@ FrameStats Renderer::Impl::recordFrame(int frameIndex, StageTimers& frameTimers)
     frameTimers.time(kResolve, [&] { draw.resolveColor(); });
 
     FrameStats st;
-    st.frame = frameIndex;
     st.time_s = time_s;
     st.bladesTotal = gpu.bladeCount;
     return st;
+}
+
+void Renderer::Impl::readCounts(FrameStats& stats) const {
+    gpu::DrawCommandGpu command{};
+    gpu::CullStatsGpu culled{};
+    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+    glGetNamedBufferSubData(gpu.drawCommand.id(), 0, sizeof command, &command);
+    glGetNamedBufferSubData(gpu.cullStats.id(), 0, sizeof culled, &culled);
+    setCounts(stats, command, culled);
 }
 
 RenderedFrame Renderer::renderFrame(int frameIndex) {
@@ -141,18 +177,35 @@ RenderedFrame Renderer::renderFrame(int frameIndex) {
     RenderedFrame out;
     out.stats = im.recordFrame(frameIndex, im.timers);
     out.image_bgr = im.draw.readBack();
-    gpu::DrawCommandGpu command{};
-    gpu::CullStatsGpu culled{};
-    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
-    glGetNamedBufferSubData(im.gpu.drawCommand.id(), 0, sizeof command, &command);
-    glGetNamedBufferSubData(im.gpu.cullStats.id(), 0, sizeof culled, &culled);
-    setCounts(out.stats, command, culled);
+    im.readCounts(out.stats);
     im.timers.readInto(out.stats);
     im.context.checkErrors("rendering frame " + std::to_string(frameIndex) + " of " +
                            im.scene.file.string());
     out.stats.frame_ms =
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
     return out;
+}
+
+RenderedFrame Renderer::renderView(const ViewFrame& view) {
+    Impl& im = *impl_;
+    const auto start = std::chrono::steady_clock::now();
+    RenderedFrame out;
+    out.stats = im.recordFrameAt(view.camera, view.time_s, view.deltaTime_s, im.timers);
+    out.stats.frame = im.viewFrames++;
+    if (view.wantImage) out.image_bgr = im.draw.readBack();
+    if (view.wantStats) {
+        im.readCounts(out.stats);
+        im.timers.readInto(out.stats);
+    }
+    im.context.checkErrors("rendering view frame " + std::to_string(out.stats.frame) + " of " +
+                           im.scene.file.string());
+    out.stats.frame_ms =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    return out;
+}
+
+void Renderer::blitToDefaultFramebuffer(int width_px, int height_px) const {
+    impl_->draw.blitToDefaultFramebuffer(width_px, height_px);
 }
 
 void Renderer::renderFrames(int first, int count, bool wantImages,

@@ -194,7 +194,6 @@ TriangleMesh glbTriangles(const std::string& bytes, const std::filesystem::path&
     return trianglesOf(model, file);
 }
 
-
 float triangleArea_m2(const TriangleMesh& mesh, std::size_t triangle) {
     const glm::uvec3 t = mesh.triangles[triangle];
     return 0.5f * glm::length(glm::cross(mesh.positions_m[t.y] - mesh.positions_m[t.x],

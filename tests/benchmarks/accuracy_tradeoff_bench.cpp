@@ -16,9 +16,9 @@
 #include <vector>
 
 #include "accuracy_tradeoff/plan.h"
-#include "accuracy_tradeoff/report.h"
 #include "accuracy_tradeoff/scene.h"
 #include "accuracy_tradeoff/tables.h"
+#include "common/report.h"
 #include "meadow/capture/frame_memory.h"
 #include "meadow/synth/synthetic_tuft.h"
 

@@ -123,7 +123,7 @@ TEST(MeadowCli, UsageErrorsAreOneLineExitingTwoAndHelpExitsZero) {
         EXPECT_EQ(countLines(r.output), 1) << "'" << bad << "': one line, got\n" << r.output;
         EXPECT_EQ(r.output.rfind("meadow: ", 0), 0u) << r.output;
     }
-    for (const std::string verb : {"", "synth", "capture", "convert", "render"}) {
+    for (const std::string verb : {"", "synth", "capture", "convert", "render", "view"}) {
         const auto r = runMeadow(verb + " --help");
         EXPECT_EQ(r.exitCode, 0) << verb << ": " << r.output;
         EXPECT_NE(r.output.find("Options:"), std::string::npos) << verb << ": " << r.output;
@@ -133,7 +133,7 @@ TEST(MeadowCli, UsageErrorsAreOneLineExitingTwoAndHelpExitsZero) {
 TEST(MeadowCli, EveryVerbsHelpIsShortWithOneLineAnOptionAndExamples) {
     constexpr int kMaxLines = 60;
     constexpr std::size_t kMaxCharacters = 4000;
-    for (const std::string verb : {"synth", "capture", "convert", "render"}) {
+    for (const std::string verb : {"synth", "capture", "convert", "render", "view"}) {
         const auto r = runMeadow(verb + " --help");
         ASSERT_EQ(r.exitCode, 0) << verb << ": " << r.output;
         EXPECT_LE(countLines(r.output), kMaxLines) << verb << ":\n" << r.output;

@@ -2,8 +2,8 @@
 #include <iostream>
 #include <sstream>
 
-#include "accuracy_tradeoff/report.h"
 #include "accuracy_tradeoff/tables.h"
+#include "common/report.h"
 
 namespace meadow::bench {
 namespace {

@@ -4,8 +4,8 @@
 #include <sstream>
 #include <utility>
 
-#include "accuracy_tradeoff/report.h"
 #include "accuracy_tradeoff/tables.h"
+#include "common/report.h"
 #include "meadow/modeling/chain_simulation.h"
 #include "meadow/synth/refiner_comparison.h"
 

@@ -4,8 +4,8 @@
 #include <sstream>
 
 #include "accuracy_tradeoff/blade_error.h"
-#include "accuracy_tradeoff/report.h"
 #include "accuracy_tradeoff/tables.h"
+#include "common/report.h"
 
 namespace meadow::bench {
 namespace {

@@ -8,8 +8,8 @@
 #include <sstream>
 
 #include "accuracy_tradeoff/blade_error.h"
-#include "accuracy_tradeoff/report.h"
 #include "accuracy_tradeoff/tables.h"
+#include "common/report.h"
 #include "meadow/capture/group_segmenter.h"
 #include "meadow/modeling/blade_observations.h"
 

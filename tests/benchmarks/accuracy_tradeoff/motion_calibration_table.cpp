@@ -4,8 +4,8 @@
 #include <span>
 #include <sstream>
 
-#include "accuracy_tradeoff/report.h"
 #include "accuracy_tradeoff/tables.h"
+#include "common/report.h"
 #include "meadow/capture/tuft_motion.h"
 
 namespace meadow::bench {

@@ -6,7 +6,7 @@
 #include <span>
 #include <stdexcept>
 
-#include "accuracy_tradeoff/report.h"
+#include "common/report.h"
 #include "meadow/capture/group_segmenter.h"
 #include "meadow/modeling/blade_observations.h"
 #include "meadow/synth/simulated_sensor.h"

@@ -3,8 +3,8 @@
 #include <iostream>
 #include <sstream>
 
-#include "accuracy_tradeoff/report.h"
 #include "accuracy_tradeoff/tables.h"
+#include "common/report.h"
 #include "meadow/synth/blade_match.h"
 
 namespace meadow::bench {

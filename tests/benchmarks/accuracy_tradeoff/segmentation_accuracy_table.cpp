@@ -3,8 +3,8 @@
 #include <map>
 #include <sstream>
 
-#include "accuracy_tradeoff/report.h"
 #include "accuracy_tradeoff/tables.h"
+#include "common/report.h"
 
 namespace meadow::bench {
 namespace {

@@ -4,8 +4,8 @@
 #include <iostream>
 #include <sstream>
 
-#include "accuracy_tradeoff/report.h"
 #include "accuracy_tradeoff/tables.h"
+#include "common/report.h"
 #include "support/tracked_tips.h"
 
 namespace meadow::bench {

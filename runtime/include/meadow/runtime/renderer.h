@@ -3,6 +3,7 @@
 // culling (compute, writes the indirect draw) -> opaque shading -> tessellated blades -> MSAA
 // resolve -> read-back. GPU timer queries time each stage.
 #include <functional>
+#include <glm/vec3.hpp>
 #include <memory>
 #include <opencv2/core/mat.hpp>
 
@@ -18,6 +19,22 @@ struct SceneBlades;      // runtime/src/scene_gpu.h
 struct RenderedFrame {
     cv::Mat image_bgr;  // CV_8UC3, width x height of the scene (or the override)
     FrameStats stats;
+};
+
+// Where the camera is and what it looks at, world space.
+struct CameraPose {
+    glm::vec3 position_m{0.f};
+    glm::vec3 target_m{0.f, 0.f, -1.f};
+};
+
+// One frame of an interactive view (`meadow view`): the caller's camera and clock instead of the
+// scene's camera path and frame rate.
+struct ViewFrame {
+    CameraPose camera;
+    float time_s = 0.f;       // simulated time shown (wind, moving colliders)
+    float deltaTime_s = 0.f;  // physics step since the previous frame; 0 holds the blades still
+    bool wantStats = false;   // read counts and GPU times back (waits for the GPU)
+    bool wantImage = false;   // read the image back (waits for the GPU)
 };
 
 class Renderer {
@@ -49,6 +66,19 @@ public:
     // If onFrame throws, the frames still in flight are dropped.
     void renderFrames(int first, int count, bool wantImages,
                       const std::function<void(RenderedFrame&&)>& onFrame);
+
+    // Renders one frame of `view` up to the resolved image on the GPU, for a window to show with
+    // blitToDefaultFramebuffer(). Frames must come in time order for the physics, as above.
+    // Reads back only what `view` asks for, so a frame left unread never makes the CPU wait;
+    // stats.frame counts the calls, frame_ms is the call's wall time.
+    RenderedFrame renderView(const ViewFrame& view);
+    // Copies the last frame's resolved image into the default framebuffer of the current context
+    // (a window's back buffer), scaled to width_px x height_px, without a read-back.
+    void blitToDefaultFramebuffer(int width_px, int height_px) const;
+    // Off: the culling pass is skipped and every blade is drawn. On by default.
+    void setCullingEnabled(bool enabled);
+    // On: blades are drawn as the edges of their tessellated triangles. Off by default.
+    void setWireframe(bool enabled);
 
     [[nodiscard]] std::size_t bladeCount() const;
     [[nodiscard]] std::size_t patchCount() const;
