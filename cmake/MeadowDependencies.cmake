@@ -1,6 +1,6 @@
 # Every dependency is a Debian 12 package; meadow.sh installs them (see README).
 find_package(PkgConfig REQUIRED)
-find_package(OpenCV REQUIRED COMPONENTS core imgproc imgcodecs)
+find_package(OpenCV REQUIRED COMPONENTS core imgproc imgcodecs ximgproc)
 find_package(glm REQUIRED)
 find_package(nlohmann_json REQUIRED)
 find_package(CLI11 REQUIRED)
@@ -9,7 +9,8 @@ find_package(OpenGL REQUIRED COMPONENTS OpenGL EGL)
 
 # PCL through pkg-config: find_package(PCL) drags in VTK, which meadow does not use.
 pkg_check_modules(PCL REQUIRED IMPORTED_TARGET
-  pcl_common pcl_sample_consensus pcl_segmentation pcl_filters pcl_features pcl_search pcl_kdtree)
+  pcl_common pcl_sample_consensus pcl_segmentation pcl_filters pcl_features pcl_search pcl_kdtree
+  pcl_io)
 find_package(Eigen3 REQUIRED NO_MODULE)
 
 # OpenNI2: Debian's libopenni2.pc names a libdir that does not hold the library, so link the

@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # Regenerates every table and chart under docs/measurements: accuracy against the simulated
-# sensor's truth (meadow_accuracy_tradeoff_bench), the capture front end's speed
-# (meadow_segmentation_bench), the runtime passes (meadow_runtime_bench) and whole rendered
-# frames (meadow_frame_bench). Run through `./meadow.sh measure [--quick] [--out DIR]`, which
+# sensor's truth (meadow_accuracy_tradeoff_bench), the sensor models against a real recording
+# (meadow_sensor_calibration_bench), capture on real scanned plants (meadow_plant_bench), the
+# capture front end's speed (meadow_segmentation_bench), the runtime passes
+# (meadow_runtime_bench) and whole rendered frames (meadow_frame_bench). Run through `./meadow.sh measure [--quick] [--out DIR]`, which
 # builds first; --quick is a smoke run (fewer presets, seeds and repetitions, short timings).
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
@@ -34,6 +35,14 @@ accuracy=(--out "$out" --made "$made")
 ((quick)) && accuracy+=(--quick)
 "$bin/meadow_accuracy_tradeoff_bench" "${accuracy[@]}" > "$out/.accuracy.log"
 
+step "simulated sensors against the real Kinect recording"
+"$bin/meadow_sensor_calibration_bench" --out "$out" --made "$made" > "$out/.sensors.log"
+
+step "real plants: capture against the truth, beside a plain leaf counter"
+plants=(--out "$out" --made "$made" --set "$root/build/plant-bench")
+((quick)) && plants+=(--quick)
+"$bin/meadow_plant_bench" "${plants[@]}" > "$out/.plants.log"
+
 # speed BENCH TABLE TITLE [extra Google Benchmark flags]: TABLE.md and .csv, and the raw .json.
 speed() {
   local bench=$1 table=$2 title=$3
@@ -52,7 +61,7 @@ frames=(--benchmark_counters_tabular=true)
 ((quick)) && frames+=(--benchmark_filter='blades:10000/')
 speed meadow_frame_bench frame_bench \
   "Whole rendered frames, 640x360, 4x MSAA, over blade counts (meadow_frame_bench)" "${frames[@]}"
-rm -f "$out/.accuracy.log"
+rm -f "$out/.accuracy.log" "$out/.sensors.log" "$out/.plants.log"
 
 # What each table holds, for the index.
 describe() {
@@ -73,6 +82,8 @@ describe() {
     motion_calibration) echo "the motion test on every preset and on gentler winds" ;;
     runtime_passes) echo "physics and culling per blade, CPU reference and GPU pass" ;;
     frame_bench) echo "whole rendered frames over blade counts: all on, no collisions, no culling" ;;
+    plant_benchmark) echo "capture on real maize shoots x 12 views x 3 sensors against the truth, beside a plain leaf counter" ;;
+    sensor_calibration) echo "the simulated sensors' noise figures against the real Kinect recording" ;;
     *) echo "" ;;
   esac
 }

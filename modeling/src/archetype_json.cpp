@@ -60,6 +60,12 @@ json archetypeToJson(const Archetype& a) {
                    {"seen_in", json::array()}};
     for (const BladeSighting& seen : a.source.seenIn)
         j["source"]["seen_in"].push_back({{"frame", seen.frame}, {"blade_id", seen.bladeId}});
+    if (a.source.placed) {
+        json m = json::array();
+        for (int row = 0; row < 4; ++row)
+            for (int col = 0; col < 4; ++col) m.push_back(a.source.cameraFromBlade[col][row]);
+        j["source"]["camera_from_blade_row_major"] = std::move(m);
+    }
     j["knots_m"] = json::array();
     for (const glm::vec3& k : a.knots_m) j["knots_m"].push_back(vec3ToJson(k));
     return j;
@@ -131,6 +137,15 @@ Archetype archetypeFromJson(const json& value, const std::string& path) {
                 if (!line.is_string()) src.fail("flags", "must hold reason lines (strings)");
                 a.source.flags.push_back(line.get<std::string>());
             }
+        if (src.has("camera_from_blade_row_major")) {  // absent in older libraries
+            const std::vector<float> m = src.floatArray("camera_from_blade_row_major");
+            if (m.size() != 16)
+                src.fail("camera_from_blade_row_major", "needs 16 numbers, row by row");
+            for (int row = 0; row < 4; ++row)
+                for (int col = 0; col < 4; ++col)
+                    a.source.cameraFromBlade[col][row] = m[static_cast<std::size_t>(row * 4 + col)];
+            a.source.placed = true;
+        }
         if (src.has("seen_in")) {  // absent in older libraries
             const json& seen = src.array("seen_in");
             for (std::size_t i = 0; i < seen.size(); ++i) {

@@ -96,6 +96,10 @@ BladeFit fitArchetype(const Skeleton& skeleton, const BladeFitParams& params, co
     a.spine_m = {glm::vec3(0.f), out.frame.toLocal(spine.spine_m.v1),
                  out.frame.toLocal(spine.spine_m.v2)};
     a.source = source;
+    a.source.placed = true;
+    const glm::mat3 cameraFromLocal = glm::transpose(out.frame.localFromCamera);
+    a.source.cameraFromBlade = glm::mat4(cameraFromLocal);
+    a.source.cameraFromBlade[3] = glm::vec4(out.frame.origin_m, 1.f);
     a.name = "f" + std::to_string(source.frame) + "-b" + std::to_string(source.bladeId);
 
     // Width profile over the fitted spine's arc length: each skeleton point sits at the arc

@@ -16,6 +16,7 @@
 #include "meadow/core/staged_folder.h"
 #include "meadow/synth/error.h"
 #include "meadow/synth/simulated_sensor.h"
+#include "truth_folder.h"
 
 namespace meadow::synth {
 
@@ -24,18 +25,8 @@ using nlohmann::json;
 
 namespace {
 
-constexpr const char* kTruthFolderName = "truth";
 constexpr const char* kTruthFileName = "blades.json";
-constexpr const char* kLabelsFolderName = "labels";
 constexpr float kMaxNoiseScale = 10.f;
-// Label images are mostly 0: the slowest, smallest PNG setting costs little here.
-constexpr int kLabelPngCompression = 9;
-
-std::string frameName(int index) {
-    char name[32];
-    std::snprintf(name, sizeof name, "%06d.png", index);
-    return name;
-}
 
 double tidy(float value) { return shortestDouble(value); }
 
@@ -82,41 +73,6 @@ json intrinsicsJson(const capture::Intrinsics& k) {
             {"fy_px", tidy(k.fy_px)}, {"cx_px", tidy(k.cx_px)},   {"cy_px", tidy(k.cy_px)}};
 }
 
-// The first entry of a truth folder that meadow synth did not write ("" for none), so replacing
-// it never deletes anything else.
-std::string foreignTruthEntry(const fs::path& folder) {
-    std::error_code ec;
-    for (fs::directory_iterator it(folder, ec), end; !ec && it != end; it.increment(ec)) {
-        const std::string name = it->path().filename().string();
-        if (name == kLabelsFolderName && it->is_directory(ec)) {
-            for (fs::directory_iterator f(it->path(), ec); !ec && f != end; f.increment(ec))
-                if (!capture::isFrameFileName(f->path().filename().string()))
-                    return f->path().string();
-        } else if (!isFileOrItsTemporary(name, kTruthFileName)) {
-            return it->path().string();
-        }
-    }
-    return ec ? folder.string() : std::string();
-}
-
-bool isTruthFolder(const fs::path& folder) { return foreignTruthEntry(folder).empty(); }
-
-// The truth a previous synth run left beside its recording belongs to the recording it replaces.
-bool isOldTruth(const fs::directory_entry& entry) {
-    std::error_code ec;
-    return entry.path().filename() == kTruthFolderName && entry.is_directory(ec) &&
-           isTruthFolder(entry.path());
-}
-
-void writeLabels(const fs::path& file, const cv::Mat1w& labels) {
-    std::vector<unsigned char> bytes;
-    if (!cv::imencode(".png", labels, bytes, {cv::IMWRITE_PNG_COMPRESSION, kLabelPngCompression}))
-        throw SynthError("cannot encode the label image " + file.string() +
-                         " as PNG: check the OpenCV build has PNG support");
-    writeFileAtomically(
-        file, std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()));
-}
-
 }  // namespace
 
 bool operator==(const SynthTruthBlade& a, const SynthTruthBlade& b) {
@@ -143,7 +99,7 @@ SynthTruthFrame truthOfFrame(const SyntheticTuft& tuft, int frameIndex) {
     SynthTruthFrame frame;
     frame.index = frameIndex;
     frame.timestamp_s = tuft.timestamp_s;
-    frame.labels = std::string(kLabelsFolderName) + "/" + frameName(frameIndex);
+    frame.labels = detail::labelsPath(frameIndex);
     for (const SyntheticBlade& blade : tuft.blades) {
         SynthTruthBlade b;
         b.id = blade.id;
@@ -298,26 +254,14 @@ SynthTruth synthesize(const SynthOptions& options,
 
     // The new recording and its truth are written beside the old ones and replace them whole
     // when complete: a run that fails or is interrupted leaves the old ones as they were.
-    std::error_code ec;
-    if (fs::is_directory(options.out / kTruthFolderName, ec))
-        if (const std::string foreign = foreignTruthEntry(options.out / kTruthFolderName);
-            !foreign.empty())
-            throw SynthError("refusing to overwrite " + options.out.string() +
-                             ": its truth holds " + foreign +
-                             ", which meadow synth did not write; choose another --out "
-                             "folder or remove it first");
-    if (const std::string why = capture::whyNotReplaceableRecording(options.out, isOldTruth);
-        !why.empty())
-        throw SynthError("refusing to overwrite " + options.out.string() +
-                         ": it is not a meadow recording (" + why +
-                         "); choose another --out folder or remove it first");
+    detail::checkReplaceableSynthOutput(options.out);
     StagedFolder staged(options.out);
     capture::RecordingInfo info;
     info.sensor = "meadow synth (simulated Kinect v1, preset " + preset->name + ")";
     info.intrinsics = spec.camera.intrinsics;
     info.frameRate_hz = kSynthFrameRate_hz;
     capture::RecordingWriter writer(staged.path(), info);
-    const fs::path truthFolder = staged.path() / kTruthFolderName;
+    const fs::path truthFolder = staged.path() / detail::kTruthFolderName;
 
     TuftSpec frameSpec = spec;
     frameSpec.wind.frameRate_hz = static_cast<float>(kSynthFrameRate_hz);
@@ -327,7 +271,7 @@ SynthTruth synthesize(const SynthOptions& options,
             tuft.meshes(), synthFrameSeed(options.seed, static_cast<std::uint64_t>(i)));
         writer.write(frame.depth_mm);
         SynthTruthFrame frameTruth = truthOfFrame(tuft, i);
-        writeLabels(truthFolder / frameTruth.labels, frame.labels);
+        detail::writeLabels(truthFolder / frameTruth.labels, frame.labels);
         truth.frames.push_back(std::move(frameTruth));
         if (progress) progress(i + 1, options.frames);
     }

@@ -6,6 +6,9 @@
 
 namespace meadow::test {
 
+// ../shared/data itself.
+inline std::filesystem::path sharedDataDir() { return MEADOW_SHARED_DATA_DIR; }
+
 // The real Kinect recording (real/oni-3dj-room, its README.txt beside it).
 inline std::filesystem::path realOniRecording() {
     return std::filesystem::path(MEADOW_SHARED_DATA_DIR) / "real/oni-3dj-room/test.oni";

@@ -8,32 +8,41 @@
 namespace meadow::synth {
 namespace {
 
-// Nguyen, Izadi & Lovell 2012, Eq. 5: sigma_z(z) = a + b (z - z0)^2 m for 10 <= theta <= 60 deg.
-constexpr float kAxialBase_m = 0.0012f;
-constexpr float kAxialQuadratic_per_m = 0.0019f;  // m / m^2
-constexpr float kAxialVertexDepth_m = 0.4f;
-// Same equation, theta > 60 deg: + c / sqrt(z) * theta^2 / (pi/2 - theta)^2.
-constexpr float kGrazingOnset_rad = std::numbers::pi_v<float> / 3.f;  // 60 deg
-constexpr float kGrazingCoefficient_m = 0.0001f;                      // m * sqrt(m)
+// Nguyen, Izadi & Lovell 2012, Eq. 5, grazing term: it applies beyond 60 deg.
+constexpr float kGrazingOnset_rad = std::numbers::pi_v<float> / 3.f;
 // The grazing term diverges at 90 deg and the paper measured no further than ~80 deg; beyond
 // 85 deg it is held at its 85 deg value (~0.36 m at 1 m) so sigma stays finite.
 constexpr float kGrazingModelLimit_rad = 85.f * std::numbers::pi_v<float> / 180.f;
 
+// Bounds that keep the image-wide terms' windows and powers within reason: a correlation or a
+// fattening wider than this is a blurred image, not a sensor, and depth powers beyond this
+// overflow a float over the working range.
+constexpr float kMaxCorrelation_px = 64.f;
+constexpr float kMaxEdgeFattening_px = 32.f;
+constexpr float kMaxGrazingDepthPower = 4.f;
 // Largest depth a millimetre uint16 image can hold.
 constexpr float kMaxRepresentableDepth_m = 65.535f;
 constexpr float kUnbounded = std::numeric_limits<float>::infinity();
 
 }  // namespace
 
-float axialSigma_m(float z_m, float incidence_rad) {
-    const float dz_m = z_m - kAxialVertexDepth_m;
-    float sigma_m = kAxialBase_m + kAxialQuadratic_per_m * dz_m * dz_m;
+float NoiseModel::axialSigma_m(float z_m, float incidence_rad) const {
+    const float dz_m = z_m - axialVertex_m;
+    float sigma_m = axialBase_m + axialQuadratic_per_m * dz_m * dz_m;
     if (incidence_rad > kGrazingOnset_rad && z_m > 0.f) {
         const float theta = std::min(incidence_rad, kGrazingModelLimit_rad);
         const float toGrazing = std::numbers::pi_v<float> / 2.f - theta;
-        sigma_m += kGrazingCoefficient_m / std::sqrt(z_m) * theta * theta / (toGrazing * toGrazing);
+        // z^p written as z^(p + 1/2) / sqrt(z): Nguyen's p = -1/2 then divides by sqrt(z) alone,
+        // exactly as their equation reads.
+        const float depthFactor = std::pow(z_m, axialGrazingDepthPower + 0.5f);
+        sigma_m +=
+            axialGrazing_m * depthFactor / std::sqrt(z_m) * theta * theta / (toGrazing * toGrazing);
     }
     return sigma_m;
+}
+
+float axialSigma_m(float z_m, float incidence_rad) {
+    return NoiseModel{}.axialSigma_m(z_m, incidence_rad);
 }
 
 float disparityStep_m(float z_m, float fx_px, float baseline_m, float subpixel) {
@@ -48,6 +57,8 @@ NoiseModel NoiseModel::none() {
     m.shadows = false;
     m.grazingDropout = false;
     m.flyingPixels = false;
+    m.edgeFattening = false;
+    m.multipath = false;
     m.scale = 0.f;
     m.minDepth_m = 0.f;
     m.maxDepth_m = kMaxRepresentableDepth_m;
@@ -62,7 +73,16 @@ std::string NoiseModel::problem() const {
         float max;
     } fields[] = {
         {"axialScale", axialScale, 0.f, kUnbounded},
+        {"axialBase_m", axialBase_m, 0.f, kUnbounded},
+        {"axialQuadratic_per_m", axialQuadratic_per_m, 0.f, kUnbounded},
+        {"axialVertex_m", axialVertex_m, 0.f, kMaxRepresentableDepth_m},
+        {"axialGrazing_m", axialGrazing_m, 0.f, kUnbounded},
+        {"axialGrazingDepthPower", axialGrazingDepthPower, -kMaxGrazingDepthPower,
+         kMaxGrazingDepthPower},
         {"lateral_px", lateral_px, 0.f, kUnbounded},
+        {"lateralCorrelation_px", lateralCorrelation_px, 0.f, kMaxCorrelation_px},
+        {"edgeFattening_px", edgeFattening_px, 0.f, kMaxEdgeFattening_px},
+        {"multipathAlbedo", multipathAlbedo, 0.f, 1.f},
         {"baseline_m", baseline_m, 0.f, kUnbounded},
         {"subpixel", subpixel, 0.f, kUnbounded},
         {"maxIncidence_deg", maxIncidence_deg, 0.f, 90.f},

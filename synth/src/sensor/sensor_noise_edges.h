@@ -25,9 +25,16 @@ struct EdgeState {
 
 // Lateral noise, Nguyen, Izadi & Lovell 2012, lateral model (sigma_L ~ 0.8 px at an edge): every
 // pixel within 3 sigma of a discontinuity (of the surfaces, or of the readings, so shadow and
-// dropout borders too) reports what the pixel displaced by
-// (round(N(0, sigma)), round(N(0, sigma))) sees, so silhouettes become ragged by ~sigma.
-void applyLateralNoise(EdgeState& state, float sigma_px, std::uint64_t seed);
+// dropout borders too) reports what the pixel displaced by (round(sigma u), round(sigma v))
+// sees, so silhouettes become ragged by ~sigma. With correlation_px = 0, u and v are drawn
+// N(0, 1) per pixel; above 0 they are white noise smoothed by a Gaussian of that sigma and
+// scaled back to unit variance, so neighbouring pixels along an edge move together.
+void applyLateralNoise(EdgeState& state, float sigma_px, float correlation_px, std::uint64_t seed);
+
+// Edge fattening (stereo): every pixel whose reading is missing, or lies behind a depth jump,
+// within width_px (Euclidean) of a nearer reading takes the nearest such reading and its
+// incidence angle. Deterministic. Returns how many pixels were fattened.
+int applyEdgeFattening(EdgeState& state, float width_px);
 
 // Flying pixels: with probability rate, a pixel with a reading that borders a discontinuity
 // to another surface reads a depth uniformly between its own and that surface's (the larger

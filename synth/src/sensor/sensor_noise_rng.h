@@ -14,6 +14,7 @@ enum class NoiseStream : std::uint64_t {
     Lateral = 1,
     FlyingPixel = 2,
     Axial = 3,
+    LateralField = 4,  // the white noise a correlated lateral field is smoothed from
 };
 
 class PixelRng : public CounterRng {

@@ -8,6 +8,7 @@
 #include "rasteriser.h"
 #include "sensor_noise.h"
 #include "sensor_noise_edges.h"
+#include "sensor_noise_multipath.h"
 #include "sensor_noise_rng.h"
 #include "sensor_noise_shadow.h"
 
@@ -72,12 +73,23 @@ SimulatedFrame SimulatedSensor::render(const std::vector<LabelledMesh>& meshes,
                   : cv::Mat1b::zeros(k.height_px, k.width_px);
     detail::EdgeState state = observable(raster, shadow, k, n, frame.incidence_rad);
 
-    // 5-6. Edge effects.
-    if (n.lateral) detail::applyLateralNoise(state, n.scale * n.lateral_px, seed);
+    // 5-7. Edge effects.
+    if (n.edgeFattening) (void)detail::applyEdgeFattening(state, n.edgeFattening_px);
+    if (n.lateral)
+        detail::applyLateralNoise(state, n.scale * n.lateral_px, n.lateralCorrelation_px, seed);
     if (n.flyingPixels)
         (void)detail::applyFlyingPixels(state, std::min(1.f, n.scale * n.flyingPixelRate), seed);
 
-    // 7-9. Axial noise, quantisation, millimetres within the working range.
+    // 8. Multipath: a bias of the surface each pixel sees, the same in every frame.
+    if (n.multipath && n.multipathAlbedo > 0.f) {
+        const cv::Mat1f bias_m =
+            detail::multipathBias_m(raster.depth_m, raster.normals, k, n.multipathAlbedo);
+        for (int y = 0; y < k.height_px; ++y)
+            for (int x = 0; x < k.width_px; ++x)
+                if (state.reading_m(y, x) > 0.f) state.reading_m(y, x) += bias_m(y, x);
+    }
+
+    // 9-11. Axial noise, quantisation, millimetres within the working range.
     const float axialFactor = n.axial ? n.scale * n.axialScale : 0.f;
     frame.depth_mm = cv::Mat1w::zeros(k.height_px, k.width_px);
     for (int y = 0; y < k.height_px; ++y)
@@ -87,7 +99,7 @@ SimulatedFrame SimulatedSensor::render(const std::vector<LabelledMesh>& meshes,
             if (axialFactor > 0.f) {
                 detail::PixelRng rng(seed, detail::NoiseStream::Axial,
                                      static_cast<std::uint64_t>(y) * k.width_px + x);
-                z_m += axialFactor * axialSigma_m(z_m, state.incidence_rad(y, x)) *
+                z_m += axialFactor * n.axialSigma_m(z_m, state.incidence_rad(y, x)) *
                        static_cast<float>(rng.normal());
             }
             if (n.quantisation)

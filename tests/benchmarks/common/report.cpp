@@ -1,5 +1,5 @@
-// Statistics, timing and output of the accuracy / trade-off bench (report.h).
-#include "accuracy_tradeoff/report.h"
+// Statistics, timing and output shared by the table-writing benches (report.h).
+#include "common/report.h"
 
 #include <time.h>
 

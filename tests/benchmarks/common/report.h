@@ -1,5 +1,5 @@
 #pragma once
-// Statistics, timing and output of the accuracy / trade-off bench: medians and means, fixed
+// Statistics, timing and output shared by the benches that write tables: medians and means, fixed
 // decimals, the thread's CPU time, files written atomically, and charts drawn by tools/chart.sh.
 #include <algorithm>
 #include <filesystem>

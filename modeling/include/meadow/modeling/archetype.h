@@ -5,6 +5,7 @@
 // approximately in the XY plane (face normal +Z), the spine bending within that plane toward +X
 // (a captured spine may carry a small Z component from depth). The width at arc-length fraction
 // s is measured in the face plane, perpendicular to the spine's tangent.
+#include <glm/mat4x4.hpp>
 #include <glm/vec3.hpp>
 #include <string>
 #include <vector>
@@ -85,6 +86,10 @@ struct Source {
     // fits a blade seen in several fused groups once, to the mean of its skeletons
     // (blade_tracks.h). Empty for an authored archetype.
     std::vector<BladeSighting> seenIn;
+    // Where the blade stood: camera = cameraFromBlade * blade-local (rigid, metres, the
+    // recording's camera space). Unplaced for an authored archetype.
+    bool placed = false;
+    glm::mat4 cameraFromBlade{1.f};
 };
 
 struct Archetype {

@@ -1,21 +1,28 @@
 #pragma once
-// A simulated structured-light depth camera (PrimeSense / Kinect v1 class): triangle meshes in
-// camera space are rasterised on the CPU into exact depth and a label image, then the noise
-// model below turns exact depth into what such a sensor reports. This is the ground truth
-// behind every accuracy test. Each noise term can be switched off or scaled.
+// A simulated depth camera: triangle meshes in camera space are rasterised on the CPU into exact
+// depth and a label image, then the noise model below turns exact depth into what a sensor
+// reports. NoiseModel's defaults are a structured-light PrimeSense / Kinect v1 class camera;
+// sensor_models.h holds calibrated Kinect v1, Kinect v2 (time of flight) and RealSense D435
+// (active stereo) models. This is the ground truth behind every accuracy test. Each noise term
+// can be switched off or scaled.
 //
 // Order in which the terms act on a frame (each one reads the result of the previous):
 //   1. rasterise: exact depth, label and surface normal of the nearest surface per pixel;
 //   2. range: exact depth outside [minDepth_m, maxDepth_m] reads 0;
 //   3. shadows: pixels the projector cannot light (occluded from x = +baseline_m) read 0;
 //   4. grazing dropout: pixels whose incidence angle exceeds maxIncidence_deg read 0;
-//   5. lateral: near depth discontinuities a pixel reports the reading of a neighbour displaced
-//      by N(0, lateral_px) px, which makes silhouettes ragged;
-//   6. flying pixels: a reading on a foreground/background edge moves to a depth between the
+//   5. edge fattening: a reading behind a depth edge within edgeFattening_px of the nearer
+//      surface reads that surface (a stereo matcher's window);
+//   6. lateral: near depth discontinuities a pixel reports the reading of a neighbour displaced
+//      by N(0, lateral_px) px, drawn per pixel or as a field correlated over
+//      lateralCorrelation_px, which makes silhouettes ragged;
+//   7. flying pixels: a reading on a foreground/background edge moves to a depth between the
 //      two surfaces, with probability flyingPixelRate;
-//   7. axial: Gaussian noise N(0, sigma_z(z, theta)) along the ray;
-//   8. quantisation: depth snapped to 1/subpixel px steps of disparity;
-//   9. output: rounded to millimetres, 0 outside the working range.
+//   8. multipath: light that reaches a surface by way of another one lengthens its reading
+//      (time of flight, concave corners);
+//   9. axial: Gaussian noise N(0, sigma_z(z, theta)) along the ray;
+//  10. quantisation: depth snapped to 1/subpixel px steps of disparity;
+//  11. output: rounded to millimetres, 0 outside the working range.
 // Random terms draw from a counter-based generator keyed by (seed, term, pixel), so a frame is
 // bit-identical for a seed whatever the order or threading of the loops.
 #include <cstdint>
@@ -31,14 +38,27 @@ namespace meadow::synth {
 using capture::Intrinsics;
 
 struct NoiseModel {
-    // Axial noise, Nguyen, Izadi & Lovell 2012, Eq. 5 (theta < 60 deg):
-    //   sigma_z(z) = 0.0012 + 0.0019 (z - 0.4)^2 m, plus their grazing-angle term
-    //   0.0001 / sqrt(z) * theta^2 / (pi/2 - theta)^2 beyond 60 deg.
+    // Axial noise, in the form of Nguyen, Izadi & Lovell 2012, Eq. 5 (their figures are the
+    // defaults): below 60 deg
+    //   sigma_z = axialBase_m + axialQuadratic_per_m (z - axialVertex_m)^2,
+    // plus, beyond 60 deg, axialGrazing_m z^axialGrazingDepthPower theta^2 / (pi/2 - theta)^2
+    // (Nguyen: 0.0001 m / sqrt(z)). Fankhauser et al. 2015's Kinect v2 model and the stereo RMS
+    // error z^2 subpixel / (f b) take the same form (sensor_models.cpp).
     bool axial = true;
     float axialScale = 1.0f;  // multiplies sigma_z (e.g. 0.5 for a better-than-Kinect sensor)
+    float axialBase_m = 0.0012f;
+    float axialQuadratic_per_m = 0.0019f;  // m per m^2
+    float axialVertex_m = 0.4f;
+    float axialGrazing_m = 0.0001f;  // m at z = 1 m
+    float axialGrazingDepthPower = -0.5f;
     // Lateral noise: ~0.8 px standard deviation of the silhouette edge (same source, Fig. 8).
+    // With lateralCorrelation_px = 0 each pixel draws its own displacement; above 0 the
+    // displacements are a Gaussian random field with that correlation length (the sigma of the
+    // Gaussian that smooths white noise), so an edge moves in stretches, as a block matcher's
+    // window moves it.
     bool lateral = true;
     float lateral_px = 0.8f;
+    float lateralCorrelation_px = 0.f;
     // Structured-light disparity quantisation: depth is snapped to steps of 1/8 px of
     // disparity d = fx * b / z with baseline b, so steps grow as z^2 / (8 fx b).
     bool quantisation = true;
@@ -54,6 +74,18 @@ struct NoiseModel {
     // saw nothing never gets a reading from this term (it can from lateral noise).
     bool flyingPixels = true;
     float flyingPixelRate = 0.3f;
+    // Edge fattening of a stereo matcher: a pixel whose reading lies behind a depth edge (or
+    // that has none) within edgeFattening_px (Euclidean) of a nearer reading takes the nearest
+    // such reading, as the correlation window there is dominated by the nearer surface.
+    bool edgeFattening = false;
+    float edgeFattening_px = 0.f;
+    // Multipath of a time-of-flight camera: each reading is lengthened by the light that
+    // reaches its surface after one diffuse bounce off another visible surface (Lambertian, of
+    // albedo multipathAlbedo), the phase of the sum read as a weighted mean of the path
+    // lengths; visibility between the two surfaces is not tested. Zero on a plane and at convex
+    // corners, largest at concave ones (a wall meeting the floor). See sensor_noise_multipath.h.
+    bool multipath = false;
+    float multipathAlbedo = 0.f;
     // Global multiplier on every random term (0 = exact depth, still quantised if enabled).
     float scale = 1.0f;
     // Working range; outside it the sensor reads 0.
@@ -65,10 +97,14 @@ struct NoiseModel {
     static NoiseModel none();
     // Empty when usable; otherwise what is wrong ("flyingPixelRate must be in [0, 1], got 2").
     [[nodiscard]] std::string problem() const;
+    // Standard deviation of axial noise in metres at depth z (m) and incidence angle theta
+    // (rad), from the axial coefficients above (axialScale and scale not applied).
+    [[nodiscard]] float axialSigma_m(float z_m, float incidence_rad) const;
 };
 
 // Standard deviation of axial noise in metres at depth z (m) and incidence angle theta (rad),
-// Nguyen, Izadi & Lovell 2012, Eq. 5 (with their grazing term beyond 60 deg).
+// Nguyen, Izadi & Lovell 2012, Eq. 5 (with their grazing term beyond 60 deg): NoiseModel's
+// defaults.
 float axialSigma_m(float z_m, float incidence_rad);
 
 // Depth step (m) between neighbouring quantised disparities at depth z: z^2 / (subpixel fx b).

@@ -1,0 +1,269 @@
+// The real-plant benchmark: the six Label3DMaize shoots (../shared/data/real/maize-label3d) on a
+// phenotyping bench, 12 turntable views each, through every simulated sensor, rendered into a
+// test set in the build folder (meadow synth --plant's files, not committed); today's capture
+// run on each view alone; its library scored against the truth (synth/library_score.h) beside
+// the plain leaf counter (synth/leaf_counter.h); the synthetic tuft presets scored the same way.
+// Writes plant_benchmark.md and .csv into --out. Run by tools/measure.sh.
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+#include <iostream>
+#include <opencv2/core/utility.hpp>
+#include <opencv2/imgcodecs.hpp>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "common/report.h"
+#include "meadow/capture/depth_source.h"
+#include "meadow/modeling/capture_pipeline.h"
+#include "meadow/modeling/error.h"
+#include "meadow/synth/leaf_counter.h"
+#include "meadow/synth/library_score.h"
+#include "meadow/synth/plant_synthesize.h"
+#include "meadow/synth/synthesize.h"
+
+namespace meadow::bench {
+namespace {
+
+namespace fs = std::filesystem;
+
+const std::vector<std::string> kPlants{"v-3-1", "v-3-2", "v-6-1", "v-6-2", "v-9-1", "v-12-1"};
+const std::vector<std::string> kTuftPresets{"quadratic-leaf", "shrub-leaf", "bamboo-leaf",
+                                            "sharp-tip", "slim-grass"};
+
+struct Row {
+    std::string set, sensor, what;
+    int views = 0, leaves = 0, matched = 0;
+    std::array<double, 7> falseBlades{};  // summed over views, by FalseBladeOn
+    std::vector<float> lengthError, widthError;
+    double countError = 0.0, baselineCountError = 0.0;  // summed over views
+    std::vector<double> capture_ms;                     // per frame
+    void add(const Row& o) {
+        views += o.views, leaves += o.leaves, matched += o.matched;
+        for (std::size_t k = 0; k < falseBlades.size(); ++k) falseBlades[k] += o.falseBlades[k];
+        lengthError.insert(lengthError.end(), o.lengthError.begin(), o.lengthError.end());
+        widthError.insert(widthError.end(), o.widthError.begin(), o.widthError.end());
+        countError += o.countError, baselineCountError += o.baselineCountError;
+        capture_ms.insert(capture_ms.end(), o.capture_ms.begin(), o.capture_ms.end());
+    }
+};
+
+// Capture as `meadow capture` runs it, each frame alone (the plant turns between views), one
+// archetype per blade and frame. An empty library when nothing could be modelled.
+modeling::ArchetypeLibrary captureEachFrame(const fs::path& recording, int frames,
+                                            std::vector<double>& ms, bool perFrame) {
+    auto source = capture::openDepthSource(recording.string());
+    modeling::CaptureOptions options;
+    if (perFrame) {
+        options.groups.fusionFrames = 1;
+        options.groups.checkMotion = false;
+        options.tracks.enabled = false;
+    }
+    const auto start = std::chrono::steady_clock::now();
+    modeling::ArchetypeLibrary library;
+    try {
+        library = modeling::captureArchetypes(*source, recording.string(), options).library;
+    } catch (const modeling::ModelingError&) {
+    }
+    const double total =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    for (int i = 0; i < frames; ++i) ms.push_back(total / frames);
+    return library;
+}
+
+// The baseline's depth band: the plant's distance from the camera +- kBaselineBand_m, as a user
+// would set it.
+constexpr float kBaselineBand_m = 0.3f;
+
+Row score(const modeling::ArchetypeLibrary& library, const synth::ScoringTruth& truth,
+          const fs::path& recording, float plantDistance_m) {
+    const synth::LibraryScore s = synth::scoreLibrary(library, truth);
+    Row row;
+    row.views = static_cast<int>(s.views.size());
+    for (std::size_t v = 0; v < s.views.size(); ++v) {
+        const synth::ViewScore& vs = s.views[v];
+        row.leaves += vs.leaves, row.matched += vs.matched;
+        for (std::size_t k = 0; k < row.falseBlades.size(); ++k)
+            row.falseBlades[k] += vs.falseBlades[k];
+        row.lengthError.insert(row.lengthError.end(), vs.lengthError.begin(), vs.lengthError.end());
+        row.widthError.insert(row.widthError.end(), vs.widthError.begin(), vs.widthError.end());
+        row.countError += std::abs(vs.archetypes - vs.leaves);
+        char name[32];
+        std::snprintf(name, sizeof name, "%06d.png", vs.frame);
+        const cv::Mat depth =
+            cv::imread((recording / "depth" / name).string(), cv::IMREAD_UNCHANGED);
+        row.baselineCountError +=
+            std::abs(synth::countLeavesPlainly(depth, plantDistance_m - kBaselineBand_m,
+                                               plantDistance_m + kBaselineBand_m) -
+                     vs.leaves);
+    }
+    return row;
+}
+
+std::string cells(const Row& r) {
+    const double views = std::max(r.views, 1);
+    std::ostringstream out;
+    out << r.views << " | " << r.leaves << " | "
+        << fixed(r.leaves ? double(r.matched) / r.leaves : 0.0, 2) << " | ";
+    double falseTotal = 0.0;
+    for (double f : r.falseBlades) falseTotal += f;
+    out << fixed(falseTotal / views, 2) << " | ";
+    std::string by;
+    for (std::size_t k = 0; k < r.falseBlades.size(); ++k)
+        if (r.falseBlades[k] > 0)
+            by += (by.empty() ? "" : ", ") +
+                  std::string(synth::kFalseBladeOnNames.name(static_cast<synth::FalseBladeOn>(k))) +
+                  " " + fixed(r.falseBlades[k] / views, 2);
+    out << (by.empty() ? "-" : by) << " | "
+        << (r.lengthError.empty() ? "-" : fixed(100.0 * median(r.lengthError), 0) + " %") << " | "
+        << (r.widthError.empty() ? "-" : fixed(100.0 * median(r.widthError), 0) + " %") << " | "
+        << fixed(r.countError / views, 1) << " | " << fixed(r.baselineCountError / views, 1)
+        << " | " << fixed(median(r.capture_ms), 0);
+    return out.str();
+}
+
+std::string csvRow(const Row& r) {
+    const double views = std::max(r.views, 1);
+    std::ostringstream out;
+    out << r.set << ',' << r.sensor << ',' << r.what << ',' << r.views << ',' << r.leaves << ','
+        << fixed(r.leaves ? double(r.matched) / r.leaves : 0.0, 3);
+    for (double f : r.falseBlades) out << ',' << fixed(f / views, 3);
+    out << ',' << orBlank(r.lengthError, median(r.lengthError), 3) << ','
+        << orBlank(r.widthError, median(r.widthError), 3) << ',' << fixed(r.countError / views, 2)
+        << ',' << fixed(r.baselineCountError / views, 2) << ',' << fixed(median(r.capture_ms), 1);
+    return out.str();
+}
+
+int run(int argc, char** argv) {
+    fs::path out = "docs/measurements", data = fs::path(MEADOW_SOURCE_DIR) / "../shared/data/real",
+             set = fs::path(MEADOW_SOURCE_DIR) / "build/plant-bench";
+    bool quick = false;
+    for (int i = 1; i < argc; ++i) {
+        const std::string arg = argv[i];
+        if (arg == "--quick")
+            quick = true;
+        else if (arg == "--out" && i + 1 < argc)
+            out = argv[++i];
+        else if (arg == "--data" && i + 1 < argc)
+            data = argv[++i];
+        else if (arg == "--set" && i + 1 < argc)
+            set = argv[++i];
+        else if (arg == "--made" && i + 1 < argc)
+            setMadeLine(argv[++i]);
+        else {
+            std::cerr
+                << "usage: " << argv[0]
+                << " [--out DIR] [--data DIR] [--set DIR] [--quick] [--made TEXT]\n"
+                   "  --data DIR  the shared real data (default ../shared/data/real)\n"
+                   "  --set DIR   where the rendered test set goes (default build/plant-bench)\n"
+                   "  --quick     two plants, four views, one sensor: a smoke run\n";
+            return 2;
+        }
+    }
+    std::cout << std::unitbuf;
+    cv::setNumThreads(0);
+    fs::create_directories(out);
+    const std::vector<std::string> plants =
+        quick ? std::vector<std::string>{"v-3-1", "v-9-1"} : kPlants;
+    const std::vector<std::string> sensors =
+        quick ? std::vector<std::string>{"kinect-v1"} : synth::plantSensorNames();
+    const int views = quick ? 4 : 12;
+    std::vector<Row> rows;
+    const fs::path scans = data / "maize-label3d";
+    const bool haveScans = fs::exists(scans);
+    if (!haveScans) std::cout << "plant bench: " << scans << " absent; real plants skipped\n";
+    for (const std::string& sensor : haveScans ? sensors : std::vector<std::string>{}) {
+        Row total;
+        total.set = "maize", total.sensor = sensor, total.what = "all";
+        for (const std::string& plant : plants) {
+            synth::PlantSynthOptions o;
+            o.plant = scans / (plant + "-l-r.txt");
+            o.views.views = views;
+            o.sensor = sensor;
+            o.out = set / sensor / plant;
+            synth::synthesizePlant(o);
+            Row row;
+            const modeling::ArchetypeLibrary library =
+                captureEachFrame(o.out, views, row.capture_ms, true);
+            const std::vector<double> ms = row.capture_ms;
+            const synth::PlantTruth truth = synth::readPlantTruth(o.out / "truth" / "plant.json");
+            row = score(library, synth::scoringTruthOf(truth, o.out / "truth"), o.out,
+                        truth.options.distance_m);
+            row.capture_ms = ms;
+            row.set = "maize", row.sensor = sensor, row.what = plant;
+            std::cout << sensor << ' ' << plant << ": " << cells(row) << '\n';
+            total.add(row);
+            rows.push_back(row);
+        }
+        rows.push_back(total);
+    }
+    // The simulated tufts, scored the same way (3 fused frames, capture's defaults).
+    Row tufts;
+    tufts.set = "tufts", tufts.sensor = "kinect-v1", tufts.what = "all";
+    for (const std::string& preset :
+         quick ? std::vector<std::string>{"quadratic-leaf"} : kTuftPresets) {
+        synth::SynthOptions o;
+        o.preset = preset;
+        o.frames = 3;
+        o.out = set / "tufts" / preset;
+        synth::synthesize(o);
+        Row row;
+        const modeling::ArchetypeLibrary library =
+            captureEachFrame(o.out, 3, row.capture_ms, false);
+        const std::vector<double> ms = row.capture_ms;
+        synth::ScoringTruth truth = synth::readScoringTruth(o.out / "truth" / "blades.json");
+        truth.views.resize(1);  // the library's archetypes stem from the group's first frame
+        row = score(library, truth, o.out,
+                    synth::readSynthTruth(o.out / "truth" / "blades.json").distance_m);
+        row.capture_ms = ms;
+        row.set = "tufts", row.sensor = "kinect-v1", row.what = preset;
+        std::cout << "tuft " << preset << ": " << cells(row) << '\n';
+        tufts.add(row);
+        rows.push_back(row);
+    }
+    rows.push_back(tufts);
+
+    std::ostringstream md;
+    md << "# Real plants: capture against the truth, beside a plain leaf counter\n\n"
+          "Six real maize shoots (Label3DMaize, `../shared/data/real/maize-label3d`) in a pot on a "
+          "floor before a wall with clutter, "
+       << views
+       << " turntable views each, rendered through each simulated sensor (`meadow synth --plant`); "
+          "`meadow capture` run on each view alone (`--fuse 1 --per-group --assume-still`); the "
+          "library scored against the truth (docs/formats.md, \"Plant truth\"). A leaf counts "
+          "when it shows at least 300 pixels; an archetype matches it when its spine stays "
+          "within max(10 mm, 5 % of the leaf's length) of the leaf's centre line over 80 % of "
+          "the shorter of the two. False blades are archetypes that match no leaf, named by what "
+          "their spine lies on. Count error: |archetypes - leaves| per view; the baseline counts "
+          "end points of a thinned depth band (synth/leaf_counter.h). The tuft rows score the "
+          "synthetic presets' first fused group the same way.\n\n"
+          "| Set | Sensor | Plant | Views | Leaves | Recall | False / view | False on | "
+          "Length error (median) | Width error (median) | Count error | Baseline count error | "
+          "Capture ms / frame |\n|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+    for (const Row& r : rows)
+        md << "| " << r.set << " | " << r.sensor << " | " << (r.what == "all" ? "**all**" : r.what)
+           << " | " << cells(r) << " |\n";
+    writeText(out / "plant_benchmark.md", md.str());
+    std::ostringstream csv;
+    csv << "set,sensor,plant,views,leaves,recall";
+    for (std::size_t k = 0; k < 7; ++k)
+        csv << ",false_on_" << synth::kFalseBladeOnNames.name(static_cast<synth::FalseBladeOn>(k));
+    csv << ",length_error_median,width_error_median,count_error,baseline_count_error,capture_ms\n";
+    for (const Row& r : rows) csv << csvRow(r) << '\n';
+    writeText(out / "plant_benchmark.csv", csv.str());
+    return 0;
+}
+
+}  // namespace
+}  // namespace meadow::bench
+
+int main(int argc, char** argv) {
+    setenv("OMP_NUM_THREADS", "1", 1);
+    try {
+        return meadow::bench::run(argc, argv);
+    } catch (const std::exception& e) {
+        std::cerr << "plant_bench: " << e.what() << '\n';
+        return 1;
+    }
+}

@@ -1,0 +1,77 @@
+// `meadow synth --plant` as a user runs it: a made plant of known organs rendered on the bench
+// into a recording with its truth, and one-line errors for what cannot work.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <opencv2/imgcodecs.hpp>
+
+#include "cli_test_util.h"
+#include "meadow/synth/plant_synthesize.h"
+#include "support/made_plant.h"
+
+namespace fs = std::filesystem;
+using meadow::test::countLines;
+using meadow::test::freshTempDir;
+using meadow::test::runMeadow;
+
+namespace {
+
+TEST(PlantSynthCli, AMadePlantBecomesATurntableRecordingWithItsTruth) {
+    const fs::path dir = freshTempDir("plant_synth");
+    const fs::path plant = meadow::test::writeMadePlant(dir / "made.txt");
+    const fs::path out = dir / "rec";
+    const auto r =
+        runMeadow("synth --plant " + plant.string() + " --turntable 4 --out " + out.string());
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_NE(r.output.find("2 leaves and a stem"), std::string::npos) << r.output;
+    const meadow::synth::PlantTruth truth = meadow::synth::readPlantTruth(out / "truth/plant.json");
+    ASSERT_EQ(truth.views.size(), 4u);
+    for (int v = 0; v < 4; ++v) {
+        const meadow::synth::PlantTruthView& view = truth.views[static_cast<std::size_t>(v)];
+        EXPECT_FLOAT_EQ(view.azimuth_deg, 90.f * static_cast<float>(v));
+        const cv::Mat depth = cv::imread(
+            (out / "depth" / (std::string("00000") + std::to_string(v) + ".png")).string(),
+            cv::IMREAD_UNCHANGED);
+        const cv::Mat labels =
+            cv::imread((out / "truth" / view.labels).string(), cv::IMREAD_UNCHANGED);
+        ASSERT_FALSE(depth.empty());
+        ASSERT_EQ(labels.size(), depth.size());
+        ASSERT_EQ(view.organs.size(), 3u);
+        int stems = 0;
+        for (const auto& o : view.organs) {
+            stems += o.stem;
+            EXPECT_EQ(o.visiblePixels, cv::countNonZero(labels == o.id)) << "organ " << o.id;
+        }
+        EXPECT_EQ(stems, 1);
+        // Pot, floor and wall are in every view.
+        for (int label :
+             {meadow::synth::kFloorLabel, meadow::synth::kWallLabel, meadow::synth::kPotLabel})
+            EXPECT_GT(cv::countNonZero(labels == label), 100) << "label " << label;
+    }
+}
+
+TEST(PlantSynthCli, WhatCannotWorkIsOneLineAndExitCodeTwo) {
+    const fs::path dir = freshTempDir("plant_synth_bad");
+    const fs::path plant = meadow::test::writeMadePlant(dir / "made.txt");
+    const std::string out = " --out " + (dir / "rec").string();
+    struct Case {
+        std::string args, mention;
+    };
+    for (const Case& c : {
+             Case{"synth --plant " + (dir / "none.txt").string() + out, "none.txt"},
+             Case{"synth --plant " + plant.string() + " --plant-unit m" + out, "--plant-unit"},
+             Case{"synth --plant " + plant.string() + " --plant-unit inch" + out, "inch"},
+             Case{"synth --plant " + plant.string() + " --frames 5" + out, "--turntable"},
+             Case{"synth --plant " + plant.string() + " --preset thin" + out, "not both"},
+             Case{"synth --plant " + plant.string() + " --sensor lidar" + out, "lidar"},
+             Case{"synth --plant " + plant.string(), "--out"},
+         }) {
+        const auto r = runMeadow(c.args);
+        EXPECT_EQ(r.exitCode, 2) << c.args << "\n" << r.output;
+        EXPECT_EQ(countLines(r.output), 1) << c.args << "\n" << r.output;
+        EXPECT_NE(r.output.find(c.mention), std::string::npos) << c.args << "\n" << r.output;
+    }
+    EXPECT_FALSE(fs::exists(dir / "rec")) << "nothing written";
+}
+
+}  // namespace
