@@ -50,23 +50,32 @@ std::vector<GroupSegmentation> GroupSegmenter::segmentPending() {
     bool moving = false;
     const auto fusion = static_cast<std::size_t>(params_.fusionFrames);
     const std::size_t firstPending = run.size() - pending_;
-    for (std::size_t first = firstPending; first < run.size(); first += fusion) {
-        const std::span<const DepthFrame> group =
-            std::span<const DepthFrame>(run).subspan(first, std::min(fusion, run.size() - first));
+    std::size_t step = fusion;
+    for (std::size_t first = firstPending; first < run.size(); first += step) {
+        const auto groupOf = [&](std::size_t frames) {
+            return std::span<const DepthFrame>(run).subspan(first,
+                                                            std::min(frames, run.size() - first));
+        };
+        std::span<const DepthFrame> group = groupOf(step);
         GroupSegmentation g;
         g.segmentation = segmenter_.segment(group, tips);
         // The run's first segmentation gives the tuft's band to test the run for motion in.
         if (first == firstPending && params_.checkMotion && !tips.depth_mm.empty() &&
             g.segmentation.farDepth_m > g.segmentation.nearDepth_m) {
-            const TuftMotion motion = tuftMotion(run, g.segmentation.nearDepth_m,
-                                                 g.segmentation.farDepth_m, params_.motion);
+            const TuftMotion motion =
+                tuftMotion(run, g.segmentation.nearDepth_m, g.segmentation.farDepth_m,
+                           params_.motion, g.segmentation.clusterMask);
             motionTests_ += motion.measured;
             if (motion.moved(params_.motion)) {
                 moving = true;
                 ++movingRuns_;
                 g.runMoved =
                     MovingRun{run.front().index, run.back().index, motion.summary(params_.motion)};
+                // Frames that disagree are never fused, nor their readings taken as recurring:
+                // each frame of the run is segmented alone.
                 tips = {};
+                step = 1;
+                group = groupOf(step);
                 g.segmentation = segmenter_.segment(group, tips);
             }
         }

@@ -34,13 +34,18 @@ void observeGroup(const capture::GroupSegmentation& group, const CaptureOptions&
     if (group.moving) observations.movingGroups.insert(group.group);
     if (group.runMoved && summary.motion.empty()) summary.motion = group.runMoved->measurement;
     if (group.runMoved)
-        summary.notes.push_back("frames " + std::to_string(group.runMoved->firstFrame) + "-" +
-                                std::to_string(group.runMoved->lastFrame) + ": the tuft moved (" +
-                                group.runMoved->measurement +
-                                "): segmented without recurring readings, one archetype per group");
+        summary.notes.push_back(
+            "frames " + std::to_string(group.runMoved->firstFrame) + "-" +
+            std::to_string(group.runMoved->lastFrame) + ": the tuft moved (" +
+            group.runMoved->measurement +
+            "): segmented frame by frame without recurring readings, one archetype per group");
     if (!options.debugDir.empty())
         capture::writeDebugOverlay(options.debugDir / overlayName(frameIndex), depthFrame, seg);
     summary.emptySegmentations += seg.empty();
+    if (seg.noPlant) {
+        ++summary.noPlantSegmentations;
+        if (summary.noPlant.empty()) summary.noPlant = seg.noBladesReason;
+    }
     if (seg.empty())
         summary.notes.push_back("frame " + std::to_string(frameIndex) + ": no blades (" +
                                 seg.noBladesReason + ")");

@@ -74,6 +74,18 @@ TEST(TuftMotion, ATuftThatSwaysChangesMoreTheFartherApartTheFramesAre) {
     EXPECT_NE(m.summary().find("6 apart"), std::string::npos) << m.summary();
 }
 
+// A plant on a turntable, or a camera carried round it: each view unlike the last, as unlike one
+// frame apart as six. The ratio is about 1, as for a still tuft; the share changed one frame
+// apart says it moved.
+TEST(TuftMotion, AViewThatChangesEveryFrameMoved) {
+    const TuftMotion m = tuftMotion(bladeFrames(12, 10), kNear_m, kFar_m);
+    ASSERT_TRUE(m.measured);
+    EXPECT_NEAR(m.ratio(), 1.0, 0.1);
+    EXPECT_GT(m.nearChanged, 0.9);
+    EXPECT_TRUE(m.moved());
+    EXPECT_LT(m.ratio(), MotionParams{}.movedRatio) << "the ratio alone takes it for still";
+}
+
 // A still patch where little changes at all (a few readings flicker in each frame) and a 3 x 3
 // block of its readings drifts 4 mm a frame, as in the real Kinect recording of a still room.
 // The ratio alone would call it moving; the extra changed readings are under a percent of the

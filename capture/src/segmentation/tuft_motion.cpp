@@ -19,6 +19,9 @@ std::string MotionParams::problem() const {
         return "MotionParams::agreement_mm must be >= 0, got " + std::to_string(agreement_mm);
     if (!std::isfinite(movedRatio) || movedRatio <= 1.f)
         return "MotionParams::movedRatio must be above 1, got " + std::to_string(movedRatio);
+    if (!std::isfinite(changedEveryFrame) || changedEveryFrame <= 0.f || changedEveryFrame > 1.f)
+        return "MotionParams::changedEveryFrame must be in (0, 1], got " +
+               std::to_string(changedEveryFrame);
     if (!std::isfinite(minMovedShare) || minMovedShare < 0.f || minMovedShare > 1.f)
         return "MotionParams::minMovedShare must be in [0, 1], got " +
                std::to_string(minMovedShare);
@@ -31,19 +34,21 @@ double TuftMotion::ratio() const {
 }
 
 bool TuftMotion::moved(const MotionParams& params) const {
-    return measured && ratio() >= params.movedRatio &&
-           farChanged - nearChanged >= params.minMovedShare;
+    return measured &&
+           ((ratio() >= params.movedRatio && farChanged - nearChanged >= params.minMovedShare) ||
+            plantChanged >= params.changedEveryFrame);
 }
 
 std::string TuftMotion::summary(const MotionParams& params) const {
     if (!measured) return "motion not measured (too few frames or no reading in the band)";
-    char line[200];
+    char line[400];
     std::snprintf(line, sizeof line,
                   "changed readings %.1f %% %d frame(s) apart, %.1f %% %d apart (%.1fx, %+.1f "
-                  "points; a still tuft about 1x, a moving one from %.1fx and %+.1f)",
+                  "points, the plant's own %.0f %%; a still tuft about 1x, a moving one from "
+                  "%.1fx and %+.1f, or from %.0f %% of the plant's readings one frame apart)",
                   100.0 * nearChanged, params.nearLag, 100.0 * farChanged, params.farLag, ratio(),
-                  100.0 * (farChanged - nearChanged), params.movedRatio,
-                  100.0 * params.minMovedShare);
+                  100.0 * (farChanged - nearChanged), 100.0 * plantChanged, params.movedRatio,
+                  100.0 * params.minMovedShare, 100.0 * params.changedEveryFrame);
     return line;
 }
 
@@ -70,7 +75,7 @@ int changedReadings(const cv::Mat1w& a, const cv::Mat1b& inBand, const cv::Mat1w
 }  // namespace
 
 TuftMotion tuftMotion(std::span<const DepthFrame> frames, float nearDepth_m, float farDepth_m,
-                      const MotionParams& params) {
+                      const MotionParams& params, const cv::Mat1b& plant) {
     if (const std::string why = params.problem(); !why.empty())
         throw CaptureError(why + "; fix the motion-test parameters");
     if (!(nearDepth_m >= 0.f) || !(farDepth_m > nearDepth_m))
@@ -106,11 +111,14 @@ TuftMotion tuftMotion(std::span<const DepthFrame> frames, float nearDepth_m, flo
             p(cv::Rect(grown.tl() - roi.tl() + cv::Point(1, 1), grown.size())));
         padded[i] = p;
     }
-    const auto share = [&](int lag, int* compared) {
+    if (!plant.empty() && plant.size() != size)
+        throw CaptureError("tuftMotion: the plant's mask differs in size from the frames");
+    const auto share = [&](int lag, int* compared, bool plantOnly = false) {
         long changed = 0, total = 0;
         for (std::size_t i = 0; i < pairs; ++i) {
             const cv::Mat1w a = frames[i].depth_mm(roi);
-            const cv::Mat1b band = inBand[i](roi);
+            const cv::Mat1b band =
+                plantOnly ? cv::Mat1b(inBand[i](roi) & plant(roi)) : cv::Mat1b(inBand[i](roi));
             total += cv::countNonZero(band);
             changed += changedReadings(a, band, padded[i + static_cast<std::size_t>(lag)],
                                        params.agreement_mm);
@@ -120,6 +128,7 @@ TuftMotion tuftMotion(std::span<const DepthFrame> frames, float nearDepth_m, flo
     };
     out.nearChanged = share(params.nearLag, &out.readings);
     out.farChanged = share(params.farLag, nullptr);
+    out.plantChanged = plant.empty() ? out.nearChanged : share(params.nearLag, nullptr, true);
     out.measured = out.readings > 0;
     return out;
 }

@@ -7,8 +7,10 @@
 // farther apart the frames are. So the test compares two shares: of the in-band readings of a
 // frame, those with no reading of the same depth in the 3x3 neighbourhood of a frame nearLag
 // later, and of one farLag later: the tuft moved where the second is movedRatio times the first
-// and minMovedShare more (see docs/capture.md#motion-test,
+// and minMovedShare more, or where the first alone reaches changedEveryFrame (see
+// docs/capture.md#motion-test,
 // docs/measurements/motion_calibration.md).
+#include <opencv2/core/mat.hpp>
 #include <span>
 #include <string>
 
@@ -25,6 +27,11 @@ struct MotionParams {
     // little changes at all, a few readings drifting make a large ratio, as on a real Kinect
     // recording of a still room (see docs/measurements/motion_calibration.md).
     float minMovedShare = 0.01f;
+    // A plant that changes this share of its own readings (TuftMotion::plantChanged) from one
+    // frame to the next moved whatever the ratio: a plant on a turntable, or a camera carried
+    // round it, changes as much one frame apart as six. Still tufts under the simulated
+    // sensor's noise change up to 27 % of their band's readings (motion_calibration).
+    float changedEveryFrame = 0.4f;
     // Empty when usable; otherwise what is wrong.
     [[nodiscard]] std::string problem() const;
 };
@@ -32,8 +39,11 @@ struct MotionParams {
 struct TuftMotion {
     double nearChanged = 0.0;  // share of in-band readings changed nearLag frames later
     double farChanged = 0.0;   // ... farLag frames later
-    int readings = 0;          // in-band readings compared at nearLag
-    bool measured = false;     // false: fewer than farLag + 1 frames, or no reading in the band
+    // Of the in-band readings within the plant's own mask (tuftMotion's `plant`), the share
+    // changed nearLag frames later; nearChanged when no mask was given.
+    double plantChanged = 0.0;
+    int readings = 0;       // in-band readings compared at nearLag
+    bool measured = false;  // false: fewer than farLag + 1 frames, or no reading in the band
     // farChanged / nearChanged (1 when nothing changed at nearLag either).
     [[nodiscard]] double ratio() const;
     [[nodiscard]] bool moved(const MotionParams& params = {}) const;
@@ -41,9 +51,11 @@ struct TuftMotion {
     [[nodiscard]] std::string summary(const MotionParams& params = {}) const;
 };
 
-// Over the readings within [nearDepth_m, farDepth_m] (the tuft's band). Throws CaptureError for
+// Over the readings within [nearDepth_m, farDepth_m] (the tuft's band); `plant` (frame-sized,
+// may be empty): the plant's mask in the first frame, for plantChanged. Throws CaptureError for
 // frames of different sizes, an empty or inverted band, or unusable params.
 [[nodiscard]] TuftMotion tuftMotion(std::span<const DepthFrame> frames, float nearDepth_m,
-                                    float farDepth_m, const MotionParams& params = {});
+                                    float farDepth_m, const MotionParams& params = {},
+                                    const cv::Mat1b& plant = cv::Mat1b());
 
 }  // namespace meadow::capture
