@@ -31,6 +31,8 @@ struct CaptureArgs {
     float tolerance_mm = 0.f;
     std::string plane;
     std::string fusion = capture::toString(capture::FusionMethod::Median);
+    std::string findPlant =
+        std::string(capture::kPlantFindingNames.name(capture::SegmenterParams{}.plantFinding));
     bool verbose = false;
 };
 
@@ -88,6 +90,7 @@ void runCapture(CaptureArgs& args) {
     // The options' checks have already refused any other name.
     options.segmenter.planeMethod = *capture::kPlaneMethodNames.parse(args.plane);
     options.segmenter.fusion = *capture::kFusionMethodNames.parse(args.fusion);
+    options.segmenter.plantFinding = *capture::kPlantFindingNames.parse(args.findPlant);
     options.fit.setTolerance_m(args.tolerance_mm * 1e-3f);
 
     auto source = capture::openDepthSource(args.source, toSourceOptions(args.sourceArgs));
@@ -121,7 +124,8 @@ void runCapture(CaptureArgs& args) {
     if (s.movingRuns > 0)
         std::cout << "the tuft moved in " << s.movingRuns << " of " << s.motionTests
                   << " run(s) of frames (" << s.motion
-                  << "): those were segmented without recurring readings and modelled one "
+                  << "): those frames were segmented one by one, without recurring readings, and "
+                     "modelled one "
                      "archetype per group (--assume-still takes every run for still)\n";
     if (const std::string skipped = modeling::skippedSummary(s); !skipped.empty())
         std::cout << skipped << '\n';
@@ -192,6 +196,12 @@ Reference: docs/cli.md (options), docs/capture.md (how it works, capturing your 
         ->group(segmentation);
     cmd->add_option("--far", args->options.segmenter.farDepth_m, "Far edge of the depth band, m")
         ->check(finiteRange(0.f, 20.f))
+        ->group(segmentation);
+    cmd->add_option("--find-plant", args->findPlant,
+                    "Without a band: clusters (room's planes off, the thin object in the middle) "
+                    "or depth-mode (nearest depth mode)")
+        ->capture_default_str()
+        ->check(CLI::IsMember(capture::kPlantFindingNames.names()))
         ->group(segmentation);
     cmd->add_option("--plane", args->plane,
                     "Ground plane removal: " + capture::kPlaneMethodNames.list(", "))

@@ -16,6 +16,7 @@
 
 #include "common/report.h"
 #include "meadow/capture/depth_source.h"
+#include "meadow/capture/segmenter.h"
 #include "meadow/modeling/capture_pipeline.h"
 #include "meadow/modeling/error.h"
 #include "meadow/synth/leaf_counter.h"
@@ -33,7 +34,7 @@ const std::vector<std::string> kTuftPresets{"quadratic-leaf", "shrub-leaf", "bam
                                             "sharp-tip", "slim-grass"};
 
 struct Row {
-    std::string set, sensor, what;
+    std::string set, sensor, what, finding;
     int views = 0, leaves = 0, matched = 0;
     std::array<double, 7> falseBlades{};  // summed over views, by FalseBladeOn
     std::vector<float> lengthError, widthError;
@@ -52,9 +53,11 @@ struct Row {
 // Capture as `meadow capture` runs it, each frame alone (the plant turns between views), one
 // archetype per blade and frame. An empty library when nothing could be modelled.
 modeling::ArchetypeLibrary captureEachFrame(const fs::path& recording, int frames,
-                                            std::vector<double>& ms, bool perFrame) {
+                                            std::vector<double>& ms, bool perFrame,
+                                            capture::PlantFinding finding) {
     auto source = capture::openDepthSource(recording.string());
     modeling::CaptureOptions options;
+    options.segmenter.plantFinding = finding;
     if (perFrame) {
         options.groups.fusionFrames = 1;
         options.groups.checkMotion = false;
@@ -126,8 +129,8 @@ std::string cells(const Row& r) {
 std::string csvRow(const Row& r) {
     const double views = std::max(r.views, 1);
     std::ostringstream out;
-    out << r.set << ',' << r.sensor << ',' << r.what << ',' << r.views << ',' << r.leaves << ','
-        << fixed(r.leaves ? double(r.matched) / r.leaves : 0.0, 3);
+    out << r.set << ',' << r.sensor << ',' << r.finding << ',' << r.what << ',' << r.views << ','
+        << r.leaves << ',' << fixed(r.leaves ? double(r.matched) / r.leaves : 0.0, 3);
     for (double f : r.falseBlades) out << ',' << fixed(f / views, 3);
     out << ',' << orBlank(r.lengthError, median(r.lengthError), 3) << ','
         << orBlank(r.widthError, median(r.widthError), 3) << ',' << fixed(r.countError / views, 2)
@@ -138,11 +141,13 @@ std::string csvRow(const Row& r) {
 int run(int argc, char** argv) {
     fs::path out = "docs/measurements", data = fs::path(MEADOW_SOURCE_DIR) / "../shared/data/real",
              set = fs::path(MEADOW_SOURCE_DIR) / "build/plant-bench";
-    bool quick = false;
+    bool quick = false, reuse = false;
     for (int i = 1; i < argc; ++i) {
         const std::string arg = argv[i];
         if (arg == "--quick")
             quick = true;
+        else if (arg == "--reuse-set")
+            reuse = true;
         else if (arg == "--out" && i + 1 < argc)
             out = argv[++i];
         else if (arg == "--data" && i + 1 < argc)
@@ -154,9 +159,10 @@ int run(int argc, char** argv) {
         else {
             std::cerr
                 << "usage: " << argv[0]
-                << " [--out DIR] [--data DIR] [--set DIR] [--quick] [--made TEXT]\n"
+                << " [--out DIR] [--data DIR] [--set DIR] [--reuse-set] [--quick] [--made TEXT]\n"
                    "  --data DIR  the shared real data (default ../shared/data/real)\n"
                    "  --set DIR   where the rendered test set goes (default build/plant-bench)\n"
+                   "  --reuse-set keep the views already rendered there (same options)\n"
                    "  --quick     two plants, four views, one sensor: a smoke run\n";
             return 2;
         }
@@ -173,56 +179,72 @@ int run(int argc, char** argv) {
     const fs::path scans = data / "maize-label3d";
     const bool haveScans = fs::exists(scans);
     if (!haveScans) std::cout << "plant bench: " << scans << " absent; real plants skipped\n";
+    const std::vector<capture::PlantFinding> findings{capture::PlantFinding::DepthMode,
+                                                      capture::PlantFinding::Clusters};
+    const auto findingName = [](capture::PlantFinding f) {
+        return std::string(capture::kPlantFindingNames.name(f));
+    };
     for (const std::string& sensor : haveScans ? sensors : std::vector<std::string>{}) {
-        Row total;
-        total.set = "maize", total.sensor = sensor, total.what = "all";
+        std::vector<Row> totals(findings.size());
+        std::vector<std::vector<Row>> perPlant(findings.size());
         for (const std::string& plant : plants) {
             synth::PlantSynthOptions o;
             o.plant = scans / (plant + "-l-r.txt");
             o.views.views = views;
             o.sensor = sensor;
             o.out = set / sensor / plant;
-            synth::synthesizePlant(o);
-            Row row;
-            const modeling::ArchetypeLibrary library =
-                captureEachFrame(o.out, views, row.capture_ms, true);
-            const std::vector<double> ms = row.capture_ms;
+            if (!(reuse && fs::exists(o.out / "truth" / "plant.json"))) synth::synthesizePlant(o);
             const synth::PlantTruth truth = synth::readPlantTruth(o.out / "truth" / "plant.json");
-            row = score(library, synth::scoringTruthOf(truth, o.out / "truth"), o.out,
-                        truth.options.distance_m);
-            row.capture_ms = ms;
-            row.set = "maize", row.sensor = sensor, row.what = plant;
-            std::cout << sensor << ' ' << plant << ": " << cells(row) << '\n';
-            total.add(row);
-            rows.push_back(row);
+            for (std::size_t f = 0; f < findings.size(); ++f) {
+                std::vector<double> ms;
+                const modeling::ArchetypeLibrary library =
+                    captureEachFrame(o.out, views, ms, true, findings[f]);
+                Row row = score(library, synth::scoringTruthOf(truth, o.out / "truth"), o.out,
+                                truth.options.distance_m);
+                row.capture_ms = ms;
+                row.set = "maize", row.sensor = sensor, row.what = plant;
+                row.finding = findingName(findings[f]);
+                std::cout << sensor << ' ' << row.finding << ' ' << plant << ": " << cells(row)
+                          << '\n';
+                totals[f].add(row);
+                perPlant[f].push_back(row);
+            }
         }
-        rows.push_back(total);
+        for (std::size_t f = 0; f < findings.size(); ++f) {
+            rows.insert(rows.end(), perPlant[f].begin(), perPlant[f].end());
+            totals[f].set = "maize", totals[f].sensor = sensor, totals[f].what = "all";
+            totals[f].finding = findingName(findings[f]);
+            rows.push_back(totals[f]);
+        }
     }
     // The simulated tufts, scored the same way (3 fused frames, capture's defaults).
-    Row tufts;
-    tufts.set = "tufts", tufts.sensor = "kinect-v1", tufts.what = "all";
-    for (const std::string& preset :
-         quick ? std::vector<std::string>{"quadratic-leaf"} : kTuftPresets) {
-        synth::SynthOptions o;
-        o.preset = preset;
-        o.frames = 3;
-        o.out = set / "tufts" / preset;
-        synth::synthesize(o);
-        Row row;
-        const modeling::ArchetypeLibrary library =
-            captureEachFrame(o.out, 3, row.capture_ms, false);
-        const std::vector<double> ms = row.capture_ms;
-        synth::ScoringTruth truth = synth::readScoringTruth(o.out / "truth" / "blades.json");
-        truth.views.resize(1);  // the library's archetypes stem from the group's first frame
-        row = score(library, truth, o.out,
-                    synth::readSynthTruth(o.out / "truth" / "blades.json").distance_m);
-        row.capture_ms = ms;
-        row.set = "tufts", row.sensor = "kinect-v1", row.what = preset;
-        std::cout << "tuft " << preset << ": " << cells(row) << '\n';
-        tufts.add(row);
-        rows.push_back(row);
+    for (const capture::PlantFinding finding : findings) {
+        Row tufts;
+        for (const std::string& preset :
+             quick ? std::vector<std::string>{"quadratic-leaf"} : kTuftPresets) {
+            synth::SynthOptions o;
+            o.preset = preset;
+            o.frames = 3;
+            o.out = set / "tufts" / preset;
+            if (finding == findings.front()) synth::synthesize(o);
+            std::vector<double> ms;
+            const modeling::ArchetypeLibrary library =
+                captureEachFrame(o.out, 3, ms, false, finding);
+            synth::ScoringTruth truth = synth::readScoringTruth(o.out / "truth" / "blades.json");
+            truth.views.resize(1);  // the library's archetypes stem from the group's first frame
+            Row row = score(library, truth, o.out,
+                            synth::readSynthTruth(o.out / "truth" / "blades.json").distance_m);
+            row.capture_ms = ms;
+            row.set = "tufts", row.sensor = "kinect-v1", row.what = preset;
+            row.finding = findingName(finding);
+            std::cout << "tuft " << row.finding << ' ' << preset << ": " << cells(row) << '\n';
+            tufts.add(row);
+            rows.push_back(row);
+        }
+        tufts.set = "tufts", tufts.sensor = "kinect-v1", tufts.what = "all";
+        tufts.finding = findingName(finding);
+        rows.push_back(tufts);
     }
-    rows.push_back(tufts);
 
     std::ostringstream md;
     md << "# Real plants: capture against the truth, beside a plain leaf counter\n\n"
@@ -230,7 +252,8 @@ int run(int argc, char** argv) {
           "floor before a wall with clutter, "
        << views
        << " turntable views each, rendered through each simulated sensor (`meadow synth --plant`); "
-          "`meadow capture` run on each view alone (`--fuse 1 --per-group --assume-still`); the "
+          "`meadow capture` run on each view alone (`--fuse 1 --per-group --assume-still`), "
+          "finding the plant by each `--find-plant` method; the "
           "library scored against the truth (docs/formats.md, \"Plant truth\"). A leaf counts "
           "when it shows at least 300 pixels; an archetype matches it when its spine stays "
           "within max(10 mm, 5 % of the leaf's length) of the leaf's centre line over 80 % of "
@@ -238,15 +261,16 @@ int run(int argc, char** argv) {
           "their spine lies on. Count error: |archetypes - leaves| per view; the baseline counts "
           "end points of a thinned depth band (synth/leaf_counter.h). The tuft rows score the "
           "synthetic presets' first fused group the same way.\n\n"
-          "| Set | Sensor | Plant | Views | Leaves | Recall | False / view | False on | "
-          "Length error (median) | Width error (median) | Count error | Baseline count error | "
-          "Capture ms / frame |\n|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+          "| Set | Sensor | Find plant | Plant | Views | Leaves | Recall | False / view | "
+          "False on | Length error (median) | Width error (median) | Count error | Baseline "
+          "count error | Capture ms / frame |\n"
+          "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
     for (const Row& r : rows)
-        md << "| " << r.set << " | " << r.sensor << " | " << (r.what == "all" ? "**all**" : r.what)
-           << " | " << cells(r) << " |\n";
+        md << "| " << r.set << " | " << r.sensor << " | " << r.finding << " | "
+           << (r.what == "all" ? "**all**" : r.what) << " | " << cells(r) << " |\n";
     writeText(out / "plant_benchmark.md", md.str());
     std::ostringstream csv;
-    csv << "set,sensor,plant,views,leaves,recall";
+    csv << "set,sensor,find_plant,plant,views,leaves,recall";
     for (std::size_t k = 0; k < 7; ++k)
         csv << ",false_on_" << synth::kFalseBladeOnNames.name(static_cast<synth::FalseBladeOn>(k));
     csv << ",length_error_median,width_error_median,count_error,baseline_count_error,capture_ms\n";

@@ -67,6 +67,13 @@ std::string SegmenterParams::problem() const {
         {"fragmentLinkGap_px", fragmentLinkGap_px, 0.f, 100.f},
         {"fragmentMinAspect", fragmentMinAspect, 1.f, 1000.f},
         {"fragmentLinkAngle_deg", fragmentLinkAngle_deg, 0.f, 90.f},
+        {"sceneMaxDepth_m", sceneMaxDepth_m, 0.1f, kMaxDepth_m},
+        {"scenePlaneDistance_m", scenePlaneDistance_m, 1e-4f, 1.f},
+        {"minScenePlaneShare", minScenePlaneShare, 0.f, 1.f},
+        {"clusterTolerance_m", clusterTolerance_m, 1e-3f, 1.f},
+        {"plantMaxMeanWidth_m", plantMaxMeanWidth_m, 1e-3f, 10.f},
+        {"plantMinHeight_m", plantMinHeight_m, 0.f, 10.f},
+        {"plantMinImageShare", plantMinImageShare, 0.f, 1.f},
     };
     for (const auto& r : ranges) {
         if (!std::isfinite(r.value))
@@ -98,6 +105,8 @@ std::string SegmenterParams::problem() const {
         {"tipTrailMaxLength_px", tipTrailMaxLength_px, 0, 4096},
         {"fragmentMaxArea_px", fragmentMaxArea_px, 0, 1 << 28},
         {"fusionAgreement_mm", fusionAgreement_mm, 0, 1000},
+        {"maxScenePlanes", maxScenePlanes, 0, 10},
+        {"minClusterPoints", minClusterPoints, 1, 1 << 24},
     };
     for (const auto& r : ints)
         if (r.value < r.lo || r.value > r.hi)
@@ -174,6 +183,8 @@ struct Segmenter::Impl {
         band.found = params.nearDepth_m < params.farDepth_m;
         const bool userBand = band.found;
         const bool removePlanes = params.planeMethod != PlaneMethod::None && params.maxPlanes > 0;
+        if (!userBand && params.plantFinding == PlantFinding::Clusters)
+            return fromPlant(depth_mm, intrinsics, std::move(out));
         cv::Mat1b mask;
         // With a user band the band goes first (fewer points for the plane fit). Without one the
         // ground is removed first: a side-viewed ground plane spreads over every depth from the
@@ -240,6 +251,33 @@ struct Segmenter::Impl {
             });
         return fromMask(std::move(mask), std::move(out), seg::SensedExtent::of(depth_mm), inBand,
                         depth_mm, recurringInBand);
+    }
+
+    // PlantFinding::Clusters: the plant found among the scene's objects takes the depth band's
+    // place; the rest is as for a band.
+    Segmentation fromPlant(const cv::Mat1w& depth_mm, const Intrinsics& intrinsics,
+                           Segmentation out) const {
+        seg::FoundPlant plant;
+        cv::Mat1b mask;
+        stage(out, "plant finding", &mask, [&](StageReport& r) {
+            plant = seg::findPlant(depth_mm, intrinsics, params, r);
+            mask = plant.found ? plant.mask : cv::Mat1b::zeros(depth_mm.size());
+        });
+        if (!plant.found) {
+            out.noBladesReason = plant.whyNot;
+            out.noPlant = true;
+            out.clusterMask = cv::Mat1b::zeros(depth_mm.size());
+            return out;
+        }
+        out.nearDepth_m = out.tuftNearest_m = plant.near_m;
+        out.farDepth_m = out.tuftFarthest_m = plant.far_m;
+        const bool trails = params.tipTrailMinReach_px > 0.f;
+        if (params.outlierMethod != OutlierMethod::None)
+            stage(out, "outlier removal", &mask, [&](StageReport& r) {
+                seg::removeOutliers(depth_mm, intrinsics, params, mask, r);
+            });
+        return fromMask(std::move(mask), std::move(out), seg::SensedExtent::of(depth_mm),
+                        trails ? plant.candidates : cv::Mat1b(), depth_mm);
     }
 
     // `sensed`: where the sensor read anything (the whole frame for a given mask).

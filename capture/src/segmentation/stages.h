@@ -56,6 +56,20 @@ cv::Mat1b depthBandMask(const cv::Mat1w& depth_mm, DepthBand band, StageReport& 
 void growDepthContinuous(const cv::Mat1w& depth_mm, const cv::Mat1b& allowed, DepthBand band,
                          const SegmenterParams& params, cv::Mat1b& bandMask, StageReport& report);
 
+// plant_finding.cpp (PCL): PlantFinding::Clusters. The room's large planes removed, the rest
+// split into Euclidean clusters, the plant the thin-parted one nearest the image's centre, its
+// pot removed.
+struct FoundPlant {
+    bool found = false;
+    cv::Mat1b mask;        // the plant's pixels, pot removed
+    cv::Mat1b candidates;  // readings tip trails may follow: the plant's depths, no plane, no
+                           // other cluster, no pot
+    float near_m = 0.f, far_m = 0.f;
+    std::string whyNot;  // "no plant in view: ..." when not found
+};
+FoundPlant findPlant(const cv::Mat1w& depth_mm, const Intrinsics& intrinsics,
+                     const SegmenterParams& params, StageReport& report);
+
 // plane_removal.cpp (PCL). Clears mask pixels on large oblique planes (ground, table top).
 // Returns the ground: the plane with the most inliers, as Segmentation::groundPlane.
 std::optional<cv::Vec4f> removePlanes(const cv::Mat1w& depth_mm, const Intrinsics& intrinsics,

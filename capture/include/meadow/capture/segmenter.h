@@ -51,6 +51,11 @@ enum class BladeMaskMethod {
             // NearestContour (needs ReferencePoint::BasePoint; with the centre it is
             // NearestContour)
 };
+// How the plant is told from the rest of the scene when no depth band is given.
+enum class PlantFinding {
+    DepthMode,  // the nearest dominant depth mode (a tuft before a far background)
+    Clusters,   // the room's planes removed, Euclidean clusters, the thin one in the middle
+};
 // How several frames of a still tuft become one depth image (temporal fusion).
 enum class FusionMethod {
     Median,  // per-pixel median of the valid readings (Fan & Sheng 2017)
@@ -65,6 +70,10 @@ inline constexpr EnumNames<PlaneMethod, 3> kPlaneMethodNames{{{
     {PlaneMethod::None, "none"},
     {PlaneMethod::Ransac, "ransac"},
     {PlaneMethod::OrganizedMultiPlane, "organized-multi-plane"},
+}}};
+inline constexpr EnumNames<PlantFinding, 2> kPlantFindingNames{{{
+    {PlantFinding::DepthMode, "depth-mode"},
+    {PlantFinding::Clusters, "clusters"},
 }}};
 inline constexpr EnumNames<FusionMethod, 2> kFusionMethodNames{{{
     {FusionMethod::Median, "median"},
@@ -100,6 +109,25 @@ struct SegmenterParams {
     // this from an in-band neighbour (tips leaning toward or away from the camera leave the
     // histogram mode but stay depth-continuous with their blade); 0 = no growth.
     float bandGrowStep_m = 0.015f;
+
+    // --- Plant finding without a band (docs/capture.md#finding-the-plant).
+    PlantFinding plantFinding = PlantFinding::DepthMode;
+    float sceneMaxDepth_m = 5.0f;         // Clusters: readings beyond are the room, not the plant
+    float scenePlaneDistance_m = 0.015f;  // a floor or wall's inlier tolerance near the camera
+                                          // (it grows with depth as the sensor's noise does)
+    float minScenePlaneShare = 0.08f;     // a floor or wall holds this share of the readings
+    int maxScenePlanes = 4;               // floor, two walls, a table top
+    float clusterTolerance_m = 0.02f;     // points nearer than this are one object
+    int minClusterPoints = 50;            // on every 2nd pixel of every 2nd row
+    // A plant is made of thin parts: the median over its pixels of twice the distance to its
+    // edge (a leaf's width, about) at most plantMaxMeanWidth_m, after the thick part it stands
+    // in (a pot) is taken off; and it stands at least plantMinHeight_m tall. Boxes, furniture,
+    // a tray of lettuce seen from above: thicker.
+    float plantMaxMeanWidth_m = 0.04f;
+    float plantMinHeight_m = 0.05f;
+    // ...and covers at least this share of the image: the guide frames the plant to fill much
+    // of it (docs/capture.md#capturing-your-own-plant); the room's odd ends are smaller.
+    float plantMinImageShare = 0.008f;
 
     // --- Ground / background plane removal.
     // RANSAC: organized multi-plane is faster, but its integral-image normals break at dropout
@@ -262,6 +290,9 @@ struct Segmentation {
     // when no plane passed as ground.
     std::optional<cv::Vec4f> groundPlane;
     std::string noBladesReason;  // set when blades is empty
+    // PlantFinding::Clusters found nothing in the scene that could be a plant (noBladesReason
+    // says what it saw instead).
+    bool noPlant = false;
     [[nodiscard]] bool empty() const { return blades.empty(); }
     [[nodiscard]] std::vector<cv::Point> cutPoints_px() const;
     [[nodiscard]] double totalTime_ms() const;

@@ -37,6 +37,8 @@ struct CaptureSummary {
     int bladesModelled = 0;                // observations behind the library's archetypes
     int averagedArchetypes = 0;            // archetypes fitted to two or more observations
     int emptySegmentations = 0;            // segmentations that found no blade
+    int noPlantSegmentations = 0;          // of them, those that saw no plant at all
+    std::string noPlant;                   // the first one's reason ("no plant in view: ...")
     int motionTests = 0;                   // runs tested for motion (GroupingParams::checkMotion)
     int movingRuns = 0;                    // of them, runs in which the tuft moved
     std::string motion;                    // the first moving run's measurement, for the CLI

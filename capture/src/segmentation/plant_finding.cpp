@@ -1,0 +1,425 @@
+// Finding the plant in a scene (PlantFinding::Clusters): the large planes of the room (floor,
+// walls, table tops) are fitted with PCL's RANSAC and removed, what remains is split into
+// Euclidean clusters (PCL), and the plant is the thin-parted cluster the camera is aimed at.
+// Its pot, the thick part it stands in at its bottom, is removed. A scene where no cluster is
+// thin enough to be leaves has no plant.
+#include <pcl/ModelCoefficients.h>
+#include <pcl/point_cloud.h>
+#include <pcl/point_types.h>
+#include <pcl/sample_consensus/method_types.h>
+#include <pcl/sample_consensus/model_types.h>
+#include <pcl/search/kdtree.h>
+#include <pcl/segmentation/extract_clusters.h>
+#include <pcl/segmentation/sac_segmentation.h>
+
+#include <Eigen/Eigenvalues>
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+#include <opencv2/imgproc.hpp>
+#include <sstream>
+
+#include "segmentation/stages.h"
+
+namespace meadow::capture::segmentation {
+
+namespace {
+
+constexpr int kRansacSeed = 4321;  // the same planes run to run
+constexpr int kRansacIterations = 300;
+constexpr int kRansacStride_px = 4;   // planes are fitted on every 4th pixel of every 4th row
+constexpr int kClusterStride_px = 2;  // clusters are found on every 2nd pixel of every 2nd row
+// A plane of the room is wide in both directions: the second largest standard deviation of its
+// inliers reaches this. The widest leaf lies far below it (maize: a 10 cm leaf has about 3 cm);
+// a floor or wall in view far above.
+constexpr float kMinPlaneSpread_m = 0.12f;
+constexpr double kMinPlaneFill = 0.25;
+// A pot's wall is wider than a leaf: an opening with a disc of this diameter keeps the pot and
+// the soil, not the leaves. Wider leaves than this seen face-on survive it too, but only the part
+// that holds the plant's lowest row is taken for the pot.
+constexpr float kPotMinWidth_m = 0.035f;
+constexpr float kPotHeightOverWidth = 1.3f;
+// A plane's readings spread with depth: a Kinect's disparity steps are z^2 / 345 m apart, 46 mm
+// at 4 m. Its inliers are taken within scenePlaneDistance_m + this z^2, about three steps beyond
+// the near tolerance, or a far wall leaves slivers a plant's width.
+constexpr float kPlaneToleranceGrowth_per_m = 0.01f;
+// What the plane removal leaves of a floor or wall, along its borders and where its readings
+// spread beyond the tolerance, lies within a few tolerances of it; a plant stands out of the
+// floor and before the wall. A cluster with most of its pixels this close to a removed plane is
+// a remnant, not an object.
+constexpr float kRemnantTolerances = 2.f;
+constexpr float kMaxRemnantShare = 0.6f;
+
+float planeTolerance_m(float base_m, float z_m) {
+    return base_m + kPlaneToleranceGrowth_per_m * z_m * z_m;
+}
+
+struct Sample {
+    cv::Point px;
+    pcl::PointXYZ p;
+};
+
+std::vector<Sample> samples(const cv::Mat1w& depth_mm, const cv::Mat1b& mask, const Intrinsics& k,
+                            int stride) {
+    std::vector<Sample> out;
+    for (int y = 0; y < depth_mm.rows; y += stride)
+        for (int x = 0; x < depth_mm.cols; x += stride) {
+            if (!mask(y, x)) continue;
+            const glm::vec3 v = k.backProject(static_cast<float>(x), static_cast<float>(y),
+                                              depth_mm(y, x) / kMillimetresPerMetre);
+            out.push_back({{x, y}, {v.x, v.y, v.z}});
+        }
+    return out;
+}
+
+pcl::PointCloud<pcl::PointXYZ>::Ptr cloudOf(const std::vector<Sample>& s) {
+    auto cloud = pcl::make_shared<pcl::PointCloud<pcl::PointXYZ>>();
+    cloud->reserve(s.size());
+    for (const Sample& e : s) cloud->push_back(e.p);
+    return cloud;
+}
+
+// Second largest standard deviation of the points: how wide a plane's inliers spread.
+float secondSpread_m(const pcl::PointCloud<pcl::PointXYZ>& cloud, const pcl::Indices& indices) {
+    Eigen::Vector3d mean = Eigen::Vector3d::Zero();
+    for (const auto i : indices)
+        mean += cloud[static_cast<std::size_t>(i)].getVector3fMap().cast<double>();
+    mean /= static_cast<double>(indices.size());
+    Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
+    for (const auto i : indices) {
+        const Eigen::Vector3d d =
+            cloud[static_cast<std::size_t>(i)].getVector3fMap().cast<double>() - mean;
+        cov += d * d.transpose();
+    }
+    cov /= static_cast<double>(indices.size());
+    const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> solver(cov);
+    return static_cast<float>(std::sqrt(std::max(0.0, solver.eigenvalues()[1])));
+}
+
+using ScenePlane = std::array<float, 4>;  // n.x + d = 0
+
+float planeDistance_m(const ScenePlane& c, const glm::vec3& v) {
+    return std::abs(c[0] * v.x + c[1] * v.y + c[2] * v.z + c[3]);
+}
+
+// Removes the room's large planes from `rest` (every pixel within the tolerance of one);
+// returns them.
+std::vector<ScenePlane> removeScenePlanes(const cv::Mat1w& depth_mm, const Intrinsics& k,
+                                          const SegmenterParams& p, cv::Mat1b& rest,
+                                          StageReport& report) {
+    std::vector<ScenePlane> removed;
+    const std::size_t all = samples(depth_mm, rest, k, kRansacStride_px).size();
+    for (int attempt = 0; attempt < p.maxScenePlanes; ++attempt) {
+        const std::vector<Sample> s = samples(depth_mm, rest, k, kRansacStride_px);
+        if (s.size() < 100) break;
+        const auto cloud = cloudOf(s);
+        pcl::SACSegmentation<pcl::PointXYZ> fit;
+        fit.setModelType(pcl::SACMODEL_PLANE);
+        fit.setMethodType(pcl::SAC_RANSAC);
+        std::vector<float> depths;
+        for (const Sample& e : s) depths.push_back(e.p.z);
+        std::nth_element(depths.begin(), depths.begin() + depths.size() / 2, depths.end());
+        fit.setDistanceThreshold(
+            planeTolerance_m(p.scenePlaneDistance_m, depths[depths.size() / 2]));
+        fit.setMaxIterations(kRansacIterations);
+        fit.setInputCloud(cloud);
+        srand(kRansacSeed + attempt);  // PCL's RANSAC draws from rand()
+        pcl::PointIndices inliers;
+        pcl::ModelCoefficients c;
+        fit.segment(inliers, c);
+        const double share = static_cast<double>(inliers.indices.size()) / all;
+        if (c.values.size() != 4 || share < p.minScenePlaneShare) break;
+        const float spread = secondSpread_m(*cloud, inliers.indices);
+        // A floor or wall fills the part of the image it spans (bar what stands before it); a
+        // plane through the leaves of a large plant catches pieces of several of them.
+        std::vector<cv::Point> inlierPixels;
+        for (const auto i : inliers.indices)
+            inlierPixels.push_back(s[static_cast<std::size_t>(i)].px);
+        const cv::Rect span = cv::boundingRect(inlierPixels);
+        const double fill = static_cast<double>(inlierPixels.size()) * kRansacStride_px *
+                            kRansacStride_px / std::max(1, span.area());
+        if (spread < kMinPlaneSpread_m || fill < kMinPlaneFill) {
+            report.notes.push_back("kept a plane of " + std::to_string(std::lround(100 * share)) +
+                                   " % of the points: too narrow or too broken for a floor or "
+                                   "wall");
+            break;
+        }
+        const ScenePlane plane{c.values[0], c.values[1], c.values[2], c.values[3]};
+        int cleared = 0;
+        for (int y = 0; y < depth_mm.rows; ++y)
+            for (int x = 0; x < depth_mm.cols; ++x) {
+                if (!rest(y, x)) continue;
+                const glm::vec3 v = k.backProject(static_cast<float>(x), static_cast<float>(y),
+                                                  depth_mm(y, x) / kMillimetresPerMetre);
+                if (planeDistance_m(plane, v) <= planeTolerance_m(p.scenePlaneDistance_m, v.z)) {
+                    rest(y, x) = 0;
+                    ++cleared;
+                }
+            }
+        std::ostringstream note;
+        note.precision(2);
+        note << "scene plane n=(" << c.values[0] << ", " << c.values[1] << ", " << c.values[2]
+             << ") removed: " << cleared << " px";
+        report.notes.push_back(note.str());
+        removed.push_back(plane);
+    }
+    return removed;
+}
+
+struct Cluster {
+    cv::Mat1b mask;  // frame-sized
+    int area_px = 0;
+    cv::Point2f centroid_px;
+    float medianDepth_m = 0.f;
+    float meanWidth_m = 0.f;
+    float height_m = 0.f;
+    float nearPlanes = 0.f;  // share of its pixels within kRemnantTolerances of a scene plane
+    cv::Mat1b pot;           // the thick part at its bottom, removed from mask
+};
+
+// Euclidean clusters of `rest` on a stride, each grown back to every pixel of `rest` beside its
+// samples at a depth within the tolerance.
+// Pixels on a jump in depth (a neighbour nearer or farther by over `tolerance_mm`): where a
+// sensor reads mixed ("flying") depths between a leaf and what lies behind it, which would chain
+// the two into one cluster.
+cv::Mat1b depthJumps(const cv::Mat1w& depth_mm, const cv::Mat1b& rest, float tolerance_mm) {
+    cv::Mat1w nearest, farthest;
+    const cv::Mat kernel = cv::getStructuringElement(cv::MORPH_RECT, {3, 3});
+    cv::Mat1w valid = depth_mm.clone();
+    valid.setTo(std::numeric_limits<std::uint16_t>::max(), depth_mm == 0);
+    cv::erode(valid, nearest, kernel);
+    cv::dilate(depth_mm, farthest, kernel);
+    cv::Mat1b jumps = cv::Mat1b::zeros(depth_mm.size());
+    for (int y = 0; y < depth_mm.rows; ++y)
+        for (int x = 0; x < depth_mm.cols; ++x)
+            if (rest(y, x) && (depth_mm(y, x) - nearest(y, x) > tolerance_mm ||
+                               farthest(y, x) - depth_mm(y, x) > tolerance_mm))
+                jumps(y, x) = 255;
+    return jumps;
+}
+
+std::vector<Cluster> euclideanClusters(const cv::Mat1w& depth_mm, const Intrinsics& k,
+                                       const SegmenterParams& p, const cv::Mat1b& rest) {
+    const float nearTolerance_mm = p.clusterTolerance_m * kMillimetresPerMetre;
+    const std::vector<Sample> s = samples(
+        depth_mm, rest & ~depthJumps(depth_mm, rest, nearTolerance_mm), k, kClusterStride_px);
+    std::vector<Cluster> out;
+    if (s.empty()) return out;
+    const auto cloud = cloudOf(s);
+    auto tree = pcl::make_shared<pcl::search::KdTree<pcl::PointXYZ>>();
+    tree->setInputCloud(cloud);
+    pcl::EuclideanClusterExtraction<pcl::PointXYZ> extraction;
+    // Samples spread apart, and readings scatter, with depth: the tolerance grows as the plane
+    // tolerance does, at the median depth of what is left.
+    std::vector<float> depths;
+    for (const Sample& e : s) depths.push_back(e.p.z);
+    std::nth_element(depths.begin(), depths.begin() + depths.size() / 2, depths.end());
+    const float tolerance_m = planeTolerance_m(p.clusterTolerance_m, depths[depths.size() / 2]);
+    extraction.setClusterTolerance(tolerance_m);
+    extraction.setMinClusterSize(p.minClusterPoints);
+    extraction.setMaxClusterSize(static_cast<pcl::uindex_t>(s.size()));
+    extraction.setSearchMethod(tree);
+    extraction.setInputCloud(cloud);
+    std::vector<pcl::PointIndices> found;
+    extraction.extract(found);
+
+    // Label of each sample, on the sample grid.
+    const int gw = (depth_mm.cols + kClusterStride_px - 1) / kClusterStride_px;
+    const int gh = (depth_mm.rows + kClusterStride_px - 1) / kClusterStride_px;
+    cv::Mat1i grid(gh, gw, 0);
+    for (std::size_t c = 0; c < found.size(); ++c)
+        for (const auto i : found[c].indices) {
+            const cv::Point px = s[static_cast<std::size_t>(i)].px;
+            grid(px.y / kClusterStride_px, px.x / kClusterStride_px) = static_cast<int>(c) + 1;
+        }
+    out.resize(found.size());
+    for (Cluster& c : out) c.mask = cv::Mat1b::zeros(depth_mm.size());
+    const float tolerance_mm = tolerance_m * kMillimetresPerMetre;
+    for (int y = 0; y < depth_mm.rows; ++y)
+        for (int x = 0; x < depth_mm.cols; ++x) {
+            if (!rest(y, x)) continue;
+            const int gx = x / kClusterStride_px, gy = y / kClusterStride_px;
+            int best = 0;
+            float bestStep = tolerance_mm;
+            for (int dy = -1; dy <= 1; ++dy)
+                for (int dx = -1; dx <= 1; ++dx) {
+                    const int sx = gx + dx, sy = gy + dy;
+                    if (sx < 0 || sy < 0 || sx >= gw || sy >= gh || grid(sy, sx) == 0) continue;
+                    const float step =
+                        std::abs(static_cast<float>(depth_mm(y, x)) -
+                                 depth_mm(sy * kClusterStride_px, sx * kClusterStride_px));
+                    if (step <= bestStep) best = grid(sy, sx), bestStep = step;
+                }
+            if (best > 0) out[static_cast<std::size_t>(best - 1)].mask(y, x) = 255;
+        }
+    for (Cluster& c : out) {
+        const cv::Moments m = cv::moments(c.mask, true);
+        c.area_px = static_cast<int>(m.m00);
+        if (c.area_px == 0) continue;
+        c.centroid_px = {static_cast<float>(m.m10 / m.m00), static_cast<float>(m.m01 / m.m00)};
+        std::vector<std::uint16_t> depths;
+        for (int y = 0; y < depth_mm.rows; ++y)
+            for (int x = 0; x < depth_mm.cols; ++x)
+                if (c.mask(y, x)) depths.push_back(depth_mm(y, x));
+        std::nth_element(depths.begin(), depths.begin() + depths.size() / 2, depths.end());
+        c.medianDepth_m = depths[depths.size() / 2] / kMillimetresPerMetre;
+        const cv::Rect box = cv::boundingRect(c.mask);
+        c.height_m = static_cast<float>(box.height) * c.medianDepth_m / k.fy_px;
+    }
+    std::erase_if(out, [](const Cluster& c) { return c.area_px == 0; });
+    return out;
+}
+
+// How thick a cluster's parts are: the median over its pixels of twice the distance to its
+// edge, in metres at its median depth. A leaf's pixels lie a centimetre or two from its edges; a
+// box's, a chair's or a wall's remnants' tens of centimetres, or (slivers) under one.
+void measureParts(Cluster& c, const Intrinsics& k) {
+    const cv::Rect box = grownWithin(cv::boundingRect(c.mask), 1, cv::Rect({0, 0}, c.mask.size()));
+    cv::Mat1f distance;
+    cv::distanceTransform(c.mask(box), distance, cv::DIST_L2, cv::DIST_MASK_PRECISE);
+    std::vector<float> d;
+    for (int y = 0; y < distance.rows; ++y)
+        for (int x = 0; x < distance.cols; ++x)
+            if (c.mask(box)(y, x)) d.push_back(distance(y, x));
+    std::nth_element(d.begin(), d.begin() + d.size() / 2, d.end());
+    c.meanWidth_m = 2.f * d[d.size() / 2] * c.medianDepth_m / k.fx_px;
+}
+
+// Clears the pot: the thick part (an opening by a disc kPotMinWidth_m across) that holds the
+// cluster's lowest rows, and a rim of 2 px around it. Returns what went.
+cv::Mat1b removePot(Cluster& c, const Intrinsics& k) {
+    const int diameter_px =
+        std::max(3, static_cast<int>(std::lround(kPotMinWidth_m * k.fx_px / c.medianDepth_m)));
+    cv::Mat1b pot = cv::Mat1b::zeros(c.mask.size());
+    const cv::Rect box = cv::boundingRect(c.mask);
+    const cv::Rect around = grownWithin(box, diameter_px, cv::Rect({0, 0}, c.mask.size()));
+    const cv::Mat1b part = c.mask(around);
+    cv::Mat1b thick;
+    cv::morphologyEx(part, thick, cv::MORPH_OPEN,
+                     cv::getStructuringElement(cv::MORPH_ELLIPSE, {diameter_px, diameter_px}));
+    if (cv::countNonZero(thick) == 0) return pot;
+    const int lowest = box.y + box.height - 1 - around.y;
+    cv::Mat1i labels;
+    cv::Mat stats, centroids;
+    const int n = cv::connectedComponentsWithStats(thick, labels, stats, centroids, 8);
+    cv::Mat1b potPart = pot(around);
+    for (int i = 1; i < n; ++i) {
+        const int top = stats.at<int>(i, cv::CC_STAT_TOP);
+        const int bottom = top + stats.at<int>(i, cv::CC_STAT_HEIGHT) - 1;
+        if (bottom < lowest - diameter_px / 2) continue;
+        // A pot is about as tall as it is wide: the thick part is cleared from its bottom up to
+        // kPotHeightOverWidth times its width there, not where thick leaves join it above.
+        int width_px = 0;  // its widest row near its bottom (a pot's bottom row is a rim)
+        for (int y = std::max(top, bottom - diameter_px); y <= bottom; ++y) {
+            int row = 0;
+            for (int x = 0; x < labels.cols; ++x) row += labels(y, x) == i;
+            width_px = std::max(width_px, row);
+        }
+        const int from = std::max(top, bottom - static_cast<int>(kPotHeightOverWidth * width_px));
+        for (int y = from; y <= bottom; ++y)
+            for (int x = 0; x < labels.cols; ++x)
+                if (labels(y, x) == i) potPart(y, x) = 255;
+    }
+    if (cv::countNonZero(potPart) == 0) return pot;
+    cv::dilate(potPart, potPart, cv::getStructuringElement(cv::MORPH_ELLIPSE, {5, 5}));
+    potPart &= part;
+    c.mask(around) &= ~potPart;
+    c.area_px = cv::countNonZero(c.mask);
+    return pot;
+}
+
+}  // namespace
+
+FoundPlant findPlant(const cv::Mat1w& depth_mm, const Intrinsics& k, const SegmenterParams& p,
+                     StageReport& report) {
+    FoundPlant plant;
+    cv::Mat1b rest = (depth_mm > 0) & (depth_mm <= p.sceneMaxDepth_m * kMillimetresPerMetre);
+    const std::vector<ScenePlane> planes = removeScenePlanes(depth_mm, k, p, rest, report);
+    std::vector<Cluster> clusters = euclideanClusters(depth_mm, k, p, rest);
+    for (Cluster& c : clusters) {
+        int near = 0;
+        for (int y = 0; y < depth_mm.rows; ++y)
+            for (int x = 0; x < depth_mm.cols; ++x) {
+                if (!c.mask(y, x)) continue;
+                const glm::vec3 v = k.backProject(static_cast<float>(x), static_cast<float>(y),
+                                                  depth_mm(y, x) / kMillimetresPerMetre);
+                const float tolerance_m =
+                    kRemnantTolerances * planeTolerance_m(p.scenePlaneDistance_m, v.z);
+                for (const ScenePlane& plane : planes)
+                    if (planeDistance_m(plane, v) <= tolerance_m) {
+                        ++near;
+                        break;
+                    }
+            }
+        c.nearPlanes = static_cast<float>(near) / static_cast<float>(std::max(1, c.area_px));
+    }
+    const int minArea_px = static_cast<int>(p.plantMinImageShare * depth_mm.total());
+    std::ostringstream seen;
+    seen.precision(2);
+    std::vector<std::size_t> thin;
+    for (std::size_t i = 0; i < clusters.size(); ++i) {
+        Cluster& c = clusters[i];
+        // A pot, a box on the floor, a chair's seat: what stands thick on its bottom goes first,
+        // so that the parts measured are what grows out of it.
+        c.pot = removePot(c, k);
+        if (c.area_px == 0) continue;
+        measureParts(c, k);
+        if (c.meanWidth_m <= p.plantMaxMeanWidth_m && c.height_m >= p.plantMinHeight_m &&
+            c.area_px >= minArea_px && c.nearPlanes <= kMaxRemnantShare)
+            thin.push_back(i);
+    }
+    report.notes.push_back(std::to_string(clusters.size()) + " cluster(s) after " +
+                           std::to_string(planes.size()) + " scene plane(s), " +
+                           std::to_string(thin.size()) + " thin enough to be a plant");
+    if (thin.empty()) {
+        std::ostringstream why;
+        why.precision(2);
+        why << "no plant in view: ";
+        if (clusters.empty())
+            why << "nothing stands apart from the floor and walls";
+        else
+            why << clusters.size() << " object(s) stand apart from the floor and walls, none "
+                << "large enough and made of parts under " << p.plantMaxMeanWidth_m * 100
+                << " cm wide, as leaves are";
+        plant.whyNot = why.str();
+        return plant;
+    }
+    // The one the camera is aimed at: nearest the image's centre, among those at least a tenth
+    // the size of the largest thin one (a stray leaf of the clutter is not the subject).
+    int largest = 0;
+    for (std::size_t i : thin) largest = std::max(largest, clusters[i].area_px);
+    const cv::Point2f centre(0.5f * static_cast<float>(depth_mm.cols),
+                             0.5f * static_cast<float>(depth_mm.rows));
+    std::size_t chosen = thin.front();
+    float best = std::numeric_limits<float>::max();
+    for (std::size_t i : thin) {
+        if (10 * clusters[i].area_px < largest) continue;
+        const float d = static_cast<float>(cv::norm(clusters[i].centroid_px - centre));
+        if (d < best) best = d, chosen = i;
+    }
+    Cluster& c = clusters[chosen];
+    const cv::Mat1b& pot = c.pot;
+    std::ostringstream note;
+    note.precision(2);
+    note << "plant: " << c.area_px << " px, " << c.height_m << " m tall at " << c.medianDepth_m
+         << " m, parts " << c.meanWidth_m * 100 << " cm wide; pot " << cv::countNonZero(pot)
+         << " px removed";
+    report.notes.push_back(note.str());
+    plant.found = true;
+    plant.mask = c.mask;
+    double nearest = 0, farthest = 0;
+    cv::minMaxLoc(depth_mm, &nearest, &farthest, nullptr, nullptr, c.mask);
+    plant.near_m = static_cast<float>(nearest) / kMillimetresPerMetre;
+    plant.far_m = static_cast<float>(farthest) / kMillimetresPerMetre;
+    // Trail candidates: readings of the plant's depth range that no plane and no other cluster
+    // holds (a dotted tip falls apart into samples too few to be a cluster of its own).
+    plant.candidates = rest & (depth_mm >= nearest) & (depth_mm <= farthest);
+    for (std::size_t i = 0; i < clusters.size(); ++i)
+        if (i != chosen) plant.candidates &= ~clusters[i].mask;
+    plant.candidates &= ~pot;
+    plant.candidates |= plant.mask;
+    return plant;
+}
+
+}  // namespace meadow::capture::segmentation

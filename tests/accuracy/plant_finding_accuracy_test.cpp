@@ -1,0 +1,89 @@
+// Finding the plant in a scene (SegmenterParams::plantFinding = Clusters): scanned plants in a
+// pot on a floor before a wall with clutter, rendered through the calibrated Kinect v1 model,
+// must come out with their leaves and without the room; a room without a plant must say so.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <vector>
+
+#include "meadow/capture/segmenter.h"
+#include "meadow/synth/plant_views.h"
+#include "meadow/synth/scanned_plant.h"
+#include "meadow/synth/sensor_figures.h"
+#include "meadow/synth/sensor_models.h"
+#include "support/shared_data.h"
+
+namespace meadow::synth {
+namespace {
+
+struct Found {
+    double plantShare = 0.0;  // of the plant's pixels (stem and leaves), in the mask
+    double roomShare = 0.0;   // of the mask, on the floor, wall, pot or clutter
+    int views = 0, withPlant = 0;
+};
+
+Found findInViews(const ScannedPlant& plant, int views) {
+    const SensorModel model = sensorModel(SensorKind::KinectV1);
+    const SimulatedSensor sensor(model.intrinsics, model.noise);
+    PlantViewOptions options;
+    options.views = views;
+    capture::SegmenterParams params;
+    params.plantFinding = capture::PlantFinding::Clusters;
+    const capture::Segmenter segmenter(params);
+    Found f;
+    long plantPixels = 0, plantFound = 0, maskPixels = 0, roomInMask = 0;
+    for (const RenderedPlantView& view : renderPlantViews(plant, options, sensor, 1)) {
+        capture::DepthFrame frame;
+        frame.depth_mm = view.frame.depth_mm;
+        frame.intrinsics = model.intrinsics;
+        const capture::Segmentation seg = segmenter.segment(frame);
+        ++f.views;
+        f.withPlant += !seg.noPlant;
+        if (seg.clusterMask.empty()) continue;
+        for (int y = 0; y < frame.depth_mm.rows; ++y)
+            for (int x = 0; x < frame.depth_mm.cols; ++x) {
+                const std::uint16_t label = view.frame.labels(y, x);
+                const bool isPlant = label > 0 && label < kFloorLabel;
+                const bool read = frame.depth_mm(y, x) > 0;
+                const bool inMask = seg.clusterMask(y, x) != 0;
+                plantPixels += isPlant && read;
+                plantFound += isPlant && read && inMask;
+                maskPixels += inMask;
+                roomInMask += inMask && label >= kFloorLabel;
+            }
+    }
+    f.plantShare = plantPixels ? static_cast<double>(plantFound) / plantPixels : 0.0;
+    f.roomShare = maskPixels ? static_cast<double>(roomInMask) / maskPixels : 0.0;
+    return f;
+}
+
+// A grown maize shoot (Label3DMaize v-9-1) from four sides: found in every view with most of
+// its pixels, little of the room along. (A young shoot's pot, which the floor's removal leaves
+// too low to tell by its thickness, is not yet taken off: docs/capture.md#finding-the-plant.)
+TEST(PlantFinding, AGrownMaizeShootIsFoundAndTheRoomLeftOut) {
+    const auto scans = test::sharedDataDir() / "real" / "maize-label3d";
+    if (!std::filesystem::exists(scans)) GTEST_SKIP() << "shared data not present: " << scans;
+    const ScannedPlant plant = loadScannedPlant(scans / "v-9-1-l-r.txt");
+    const Found f = findInViews(plant, 4);
+    EXPECT_EQ(f.withPlant, f.views);
+    EXPECT_GE(f.plantShare, 0.8);
+    EXPECT_LE(f.roomShare, 0.1);
+}
+
+// A room of planes and furniture-like boxes and no plant: no plant, and no mask.
+TEST(PlantFinding, ARoomWithoutAPlantHasNone) {
+    const SensorModel model = sensorModel(SensorKind::KinectV1);
+    const SimulatedSensor sensor(model.intrinsics, model.noise);
+    capture::SegmenterParams params;
+    params.plantFinding = capture::PlantFinding::Clusters;
+    capture::DepthFrame frame;
+    frame.depth_mm = sensor.render(calibrationRoom(), 1).depth_mm;
+    frame.intrinsics = model.intrinsics;
+    const capture::Segmentation seg = capture::Segmenter(params).segment(frame);
+    EXPECT_TRUE(seg.noPlant) << seg.summary();
+    EXPECT_TRUE(seg.blades.empty());
+    EXPECT_NE(seg.noBladesReason.find("no plant"), std::string::npos) << seg.noBladesReason;
+}
+
+}  // namespace
+}  // namespace meadow::synth
