@@ -10,13 +10,21 @@ root=$(cd "$(dirname "$0")/.." && pwd)
 bin=$root/build/default/tests
 out=$root/docs/measurements
 quick=0
+only=""
+usage="usage: meadow.sh measure [--quick] [--out DIR] [--only accuracy|sensors|plants|speed,...]"
 while (($#)); do
   case $1 in
     --quick) quick=1 ;;
     --out) out=$2; shift ;;
-    *) echo "usage: meadow.sh measure [--quick] [--out DIR]" >&2; exit 2 ;;
+    --only) only=,$2,; shift ;;
+    *) echo "$usage" >&2; exit 2 ;;
   esac
   shift
+done
+# --only GROUPS: regenerate those groups' tables (and the index), leave the others as they are.
+wanted() { [ -z "$only" ] || [[ $only == *,$1,* ]]; }
+for group in ${only//,/ }; do
+  case $group in accuracy|sensors|plants|speed) ;; *) echo "$usage" >&2; exit 2 ;; esac
 done
 mkdir -p "$out"
 out=$(cd "$out" && pwd)
@@ -30,18 +38,24 @@ made="commit $commit on $(date -u +%F), $(nproc) cores ($cpu)"
 export XDG_RUNTIME_DIR=${XDG_RUNTIME_DIR:-/tmp}
 step() { echo "meadow measure: $*"; }
 
-step "accuracy tables (simulated sensor's truth)"
-accuracy=(--out "$out" --made "$made")
-((quick)) && accuracy+=(--quick)
-"$bin/meadow_accuracy_tradeoff_bench" "${accuracy[@]}" > "$out/.accuracy.log"
+if wanted accuracy; then
+  step "accuracy tables (simulated sensor's truth)"
+  accuracy=(--out "$out" --made "$made")
+  ((quick)) && accuracy+=(--quick)
+  "$bin/meadow_accuracy_tradeoff_bench" "${accuracy[@]}" > "$out/.accuracy.log"
+fi
 
-step "simulated sensors against the real Kinect recording"
-"$bin/meadow_sensor_calibration_bench" --out "$out" --made "$made" > "$out/.sensors.log"
+if wanted sensors; then
+  step "simulated sensors against the real Kinect recording"
+  "$bin/meadow_sensor_calibration_bench" --out "$out" --made "$made" > "$out/.sensors.log"
+fi
 
-step "real plants: capture against the truth, beside a plain leaf counter"
-plants=(--out "$out" --made "$made" --set "$root/build/plant-bench")
-((quick)) && plants+=(--quick)
-"$bin/meadow_plant_bench" "${plants[@]}" > "$out/.plants.log"
+if wanted plants; then
+  step "real plants: capture against the truth, beside a plain leaf counter"
+  plants=(--out "$out" --made "$made" --set "$root/build/plant-bench")
+  ((quick)) && plants+=(--quick)
+  "$bin/meadow_plant_bench" "${plants[@]}" > "$out/.plants.log"
+fi
 
 # speed BENCH TABLE TITLE [extra Google Benchmark flags]: TABLE.md and .csv, and the raw .json.
 speed() {
@@ -53,14 +67,16 @@ speed() {
   "$bin/$bench" "${flags[@]}" > /dev/null
   "$bin/meadow_bench_table" "$out/$table.json" "$title" "$made" "$out/$table.md" "$out/$table.csv"
 }
-speed meadow_segmentation_bench segmentation_speed \
-  "Capture front end at 640x480 on one core, whole and per stage (meadow_segmentation_bench)"
-speed meadow_runtime_bench runtime_passes \
-  "Physics and culling per blade: CPU reference and GPU pass (meadow_runtime_bench)"
-frames=(--benchmark_counters_tabular=true)
-((quick)) && frames+=(--benchmark_filter='blades:10000/')
-speed meadow_frame_bench frame_bench \
-  "Whole rendered frames, 640x360, 4x MSAA, over blade counts (meadow_frame_bench)" "${frames[@]}"
+if wanted speed; then
+  speed meadow_segmentation_bench segmentation_speed \
+    "Capture front end at 640x480 on one core, whole and per stage (meadow_segmentation_bench)"
+  speed meadow_runtime_bench runtime_passes \
+    "Physics and culling per blade: CPU reference and GPU pass (meadow_runtime_bench)"
+  frames=(--benchmark_counters_tabular=true)
+  ((quick)) && frames+=(--benchmark_filter='blades:10000/')
+  speed meadow_frame_bench frame_bench \
+    "Whole rendered frames, 640x360, 4x MSAA, over blade counts (meadow_frame_bench)" "${frames[@]}"
+fi
 rm -f "$out/.accuracy.log" "$out/.sensors.log" "$out/.plants.log"
 
 # What each table holds, for the index.
