@@ -33,6 +33,8 @@ struct CaptureArgs {
     std::string fusion = capture::toString(capture::FusionMethod::Median);
     std::string findPlant =
         std::string(capture::kPlantFindingNames.name(capture::SegmenterParams{}.plantFinding));
+    std::string partition =
+        std::string(capture::kPartitionMethodNames.name(capture::SegmenterParams{}.partition));
     bool verbose = false;
 };
 
@@ -91,6 +93,7 @@ void runCapture(CaptureArgs& args) {
     options.segmenter.planeMethod = *capture::kPlaneMethodNames.parse(args.plane);
     options.segmenter.fusion = *capture::kFusionMethodNames.parse(args.fusion);
     options.segmenter.plantFinding = *capture::kPlantFindingNames.parse(args.findPlant);
+    options.segmenter.partition = *capture::kPartitionMethodNames.parse(args.partition);
     options.fit.setTolerance_m(args.tolerance_mm * 1e-3f);
 
     auto source = capture::openDepthSource(args.source, toSourceOptions(args.sourceArgs));
@@ -202,6 +205,12 @@ Reference: docs/cli.md (options), docs/capture.md (how it works, capturing your 
                     "or depth-mode (nearest depth mode)")
         ->capture_default_str()
         ->check(CLI::IsMember(capture::kPlantFindingNames.names()))
+        ->group(segmentation);
+    cmd->add_option(
+           "--partition", args->partition,
+           "Cut blades by: contour (a fan from one base) or stem-graph (leaves off a stem)")
+        ->capture_default_str()
+        ->check(CLI::IsMember(capture::kPartitionMethodNames.names()))
         ->group(segmentation);
     cmd->add_option("--plane", args->plane,
                     "Ground plane removal: " + capture::kPlaneMethodNames.list(", "))

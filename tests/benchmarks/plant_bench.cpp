@@ -52,12 +52,23 @@ struct Row {
 
 // Capture as `meadow capture` runs it, each frame alone (the plant turns between views), one
 // archetype per blade and frame. An empty library when nothing could be modelled.
+// A way of capturing: how the plant is found and how it is cut into blades.
+struct Method {
+    capture::PlantFinding finding;
+    capture::PartitionMethod partition;
+    [[nodiscard]] std::string name() const {
+        return std::string(capture::kPlantFindingNames.name(finding)) + " + " +
+               std::string(capture::kPartitionMethodNames.name(partition));
+    }
+};
+
 modeling::ArchetypeLibrary captureEachFrame(const fs::path& recording, int frames,
                                             std::vector<double>& ms, bool perFrame,
-                                            capture::PlantFinding finding) {
+                                            const Method& method) {
     auto source = capture::openDepthSource(recording.string());
     modeling::CaptureOptions options;
-    options.segmenter.plantFinding = finding;
+    options.segmenter.plantFinding = method.finding;
+    options.segmenter.partition = method.partition;
     if (perFrame) {
         options.groups.fusionFrames = 1;
         options.groups.checkMotion = false;
@@ -179,11 +190,11 @@ int run(int argc, char** argv) {
     const fs::path scans = data / "maize-label3d";
     const bool haveScans = fs::exists(scans);
     if (!haveScans) std::cout << "plant bench: " << scans << " absent; real plants skipped\n";
-    const std::vector<capture::PlantFinding> findings{capture::PlantFinding::DepthMode,
-                                                      capture::PlantFinding::Clusters};
-    const auto findingName = [](capture::PlantFinding f) {
-        return std::string(capture::kPlantFindingNames.name(f));
-    };
+    const std::vector<Method> findings{
+        {capture::PlantFinding::DepthMode, capture::PartitionMethod::Contour},
+        {capture::PlantFinding::Clusters, capture::PartitionMethod::Contour},
+        {capture::PlantFinding::Clusters, capture::PartitionMethod::StemGraph}};
+    const auto findingName = [](const Method& m) { return m.name(); };
     for (const std::string& sensor : haveScans ? sensors : std::vector<std::string>{}) {
         std::vector<Row> totals(findings.size());
         std::vector<std::vector<Row>> perPlant(findings.size());
@@ -218,7 +229,7 @@ int run(int argc, char** argv) {
         }
     }
     // The simulated tufts, scored the same way (3 fused frames, capture's defaults).
-    for (const capture::PlantFinding finding : findings) {
+    for (const Method& finding : findings) {
         Row tufts;
         for (const std::string& preset :
              quick ? std::vector<std::string>{"quadratic-leaf"} : kTuftPresets) {
@@ -226,7 +237,7 @@ int run(int argc, char** argv) {
             o.preset = preset;
             o.frames = 3;
             o.out = set / "tufts" / preset;
-            if (finding == findings.front()) synth::synthesize(o);
+            if (&finding == &findings.front()) synth::synthesize(o);
             std::vector<double> ms;
             const modeling::ArchetypeLibrary library =
                 captureEachFrame(o.out, 3, ms, false, finding);
@@ -253,7 +264,7 @@ int run(int argc, char** argv) {
        << views
        << " turntable views each, rendered through each simulated sensor (`meadow synth --plant`); "
           "`meadow capture` run on each view alone (`--fuse 1 --per-group --assume-still`), "
-          "finding the plant by each `--find-plant` method; the "
+          "with each way of finding the plant (`--find-plant`) and cutting it (`--partition`); the "
           "library scored against the truth (docs/formats.md, \"Plant truth\"). A leaf counts "
           "when it shows at least 300 pixels; an archetype matches it when its spine stays "
           "within max(10 mm, 5 % of the leaf's length) of the leaf's centre line over 80 % of "
@@ -261,7 +272,7 @@ int run(int argc, char** argv) {
           "their spine lies on. Count error: |archetypes - leaves| per view; the baseline counts "
           "end points of a thinned depth band (synth/leaf_counter.h). The tuft rows score the "
           "synthetic presets' first fused group the same way.\n\n"
-          "| Set | Sensor | Find plant | Plant | Views | Leaves | Recall | False / view | "
+          "| Set | Sensor | Capture | Plant | Views | Leaves | Recall | False / view | "
           "False on | Length error (median) | Width error (median) | Count error | Baseline "
           "count error | Capture ms / frame |\n"
           "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
@@ -270,7 +281,7 @@ int run(int argc, char** argv) {
            << (r.what == "all" ? "**all**" : r.what) << " | " << cells(r) << " |\n";
     writeText(out / "plant_benchmark.md", md.str());
     std::ostringstream csv;
-    csv << "set,sensor,find_plant,plant,views,leaves,recall";
+    csv << "set,sensor,capture,plant,views,leaves,recall";
     for (std::size_t k = 0; k < 7; ++k)
         csv << ",false_on_" << synth::kFalseBladeOnNames.name(static_cast<synth::FalseBladeOn>(k));
     csv << ",length_error_median,width_error_median,count_error,baseline_count_error,capture_ms\n";

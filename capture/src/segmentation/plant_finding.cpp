@@ -50,6 +50,10 @@ constexpr float kPlaneToleranceGrowth_per_m = 0.01f;
 // a remnant, not an object.
 constexpr float kRemnantTolerances = 2.f;
 constexpr float kMaxRemnantShare = 0.6f;
+constexpr float kLeafGap_m = 0.03f;
+// A piece that joins the plant is held to less: slivers of the floor and wall beside the plant
+// lie within its reach.
+constexpr float kMaxJoinedRemnantShare = 0.2f;
 
 float planeTolerance_m(float base_m, float z_m) {
     return base_m + kPlaneToleranceGrowth_per_m * z_m * z_m;
@@ -176,7 +180,14 @@ struct Cluster {
     float height_m = 0.f;
     float nearPlanes = 0.f;  // share of its pixels within kRemnantTolerances of a scene plane
     cv::Mat1b pot;           // the thick part at its bottom, removed from mask
+    cv::Vec3f lo{1e9f, 1e9f, 1e9f}, hi{-1e9f, -1e9f, -1e9f};  // camera-space bounds of its samples
 };
+
+bool boundsMeet(const Cluster& a, const Cluster& b, float margin_m) {
+    for (int i = 0; i < 3; ++i)
+        if (a.lo[i] - margin_m > b.hi[i] || b.lo[i] - margin_m > a.hi[i]) return false;
+    return true;
+}
 
 // Euclidean clusters of `rest` on a stride, each grown back to every pixel of `rest` beside its
 // samples at a depth within the tolerance.
@@ -235,6 +246,14 @@ std::vector<Cluster> euclideanClusters(const cv::Mat1w& depth_mm, const Intrinsi
         }
     out.resize(found.size());
     for (Cluster& c : out) c.mask = cv::Mat1b::zeros(depth_mm.size());
+    for (std::size_t c = 0; c < found.size(); ++c)
+        for (const auto i : found[c].indices) {
+            const pcl::PointXYZ& q = s[static_cast<std::size_t>(i)].p;
+            for (int a = 0; a < 3; ++a) {
+                out[c].lo[a] = std::min(out[c].lo[a], q.data[a]);
+                out[c].hi[a] = std::max(out[c].hi[a], q.data[a]);
+            }
+        }
     const float tolerance_mm = tolerance_m * kMillimetresPerMetre;
     for (int y = 0; y < depth_mm.rows; ++y)
         for (int x = 0; x < depth_mm.cols; ++x) {
@@ -398,7 +417,32 @@ FoundPlant findPlant(const cv::Mat1w& depth_mm, const Intrinsics& k, const Segme
         const float d = static_cast<float>(cv::norm(clusters[i].centroid_px - centre));
         if (d < best) best = d, chosen = i;
     }
+    // A plant whose leaves meet only at a stem the sensor hardly reads, or only across depth
+    // jumps, falls apart into one cluster a leaf: the thin clusters whose bounds come within
+    // kLeafGap_m of the plant's join it, in turn; not what stood on something thick (a box's
+    // remains) nor slivers of the floor and wall.
     Cluster& c = clusters[chosen];
+    std::vector<char> joined(clusters.size(), 0);
+    joined[chosen] = 1;
+    for (bool grew = true; grew;) {
+        grew = false;
+        for (std::size_t i = 0; i < clusters.size(); ++i) {
+            const Cluster& o = clusters[i];
+            if (joined[i] || o.area_px == 0 || o.meanWidth_m > p.plantMaxMeanWidth_m ||
+                o.nearPlanes > kMaxJoinedRemnantShare || cv::countNonZero(o.pot) > 0 ||
+                !boundsMeet(c, o, kLeafGap_m))
+                continue;
+            joined[i] = 1;
+            grew = true;
+            c.mask |= o.mask;
+            c.pot |= o.pot;
+            for (int a = 0; a < 3; ++a) {
+                c.lo[a] = std::min(c.lo[a], o.lo[a]);
+                c.hi[a] = std::max(c.hi[a], o.hi[a]);
+            }
+        }
+    }
+    c.area_px = cv::countNonZero(c.mask);
     const cv::Mat1b& pot = c.pot;
     std::ostringstream note;
     note.precision(2);
@@ -408,6 +452,16 @@ FoundPlant findPlant(const cv::Mat1w& depth_mm, const Intrinsics& k, const Segme
     report.notes.push_back(note.str());
     plant.found = true;
     plant.mask = c.mask;
+    // Where the plant stands: the top middle of its pot, or else the middle of its lowest row.
+    const cv::Mat1b& foot = cv::countNonZero(pot) > 0 ? pot : c.mask;
+    const cv::Rect footBox = cv::boundingRect(foot);
+    const int footRow = cv::countNonZero(pot) > 0 ? footBox.y : footBox.y + footBox.height - 1;
+    std::vector<cv::Point> row;
+    cv::findNonZero(foot.row(footRow), row);
+    float sum = 0.f;
+    for (const cv::Point& q : row) sum += static_cast<float>(q.x);
+    plant.base_px = {row.empty() ? footBox.x + 0.5f * footBox.width : sum / row.size(),
+                     static_cast<float>(footRow)};
     double nearest = 0, farthest = 0;
     cv::minMaxLoc(depth_mm, &nearest, &farthest, nullptr, nullptr, c.mask);
     plant.near_m = static_cast<float>(nearest) / kMillimetresPerMetre;
@@ -416,7 +470,7 @@ FoundPlant findPlant(const cv::Mat1w& depth_mm, const Intrinsics& k, const Segme
     // holds (a dotted tip falls apart into samples too few to be a cluster of its own).
     plant.candidates = rest & (depth_mm >= nearest) & (depth_mm <= farthest);
     for (std::size_t i = 0; i < clusters.size(); ++i)
-        if (i != chosen) plant.candidates &= ~clusters[i].mask;
+        if (!joined[i]) plant.candidates &= ~clusters[i].mask;
     plant.candidates &= ~pot;
     plant.candidates |= plant.mask;
     return plant;

@@ -74,6 +74,7 @@ std::string SegmenterParams::problem() const {
         {"plantMaxMeanWidth_m", plantMaxMeanWidth_m, 1e-3f, 10.f},
         {"plantMinHeight_m", plantMinHeight_m, 0.f, 10.f},
         {"plantMinImageShare", plantMinImageShare, 0.f, 1.f},
+        {"minLeafBranch_px", minLeafBranch_px, 0.f, 10000.f},
     };
     for (const auto& r : ranges) {
         if (!std::isfinite(r.value))
@@ -269,6 +270,7 @@ struct Segmenter::Impl {
             out.clusterMask = cv::Mat1b::zeros(depth_mm.size());
             return out;
         }
+        out.plantBase_px = plant.base_px;
         out.nearDepth_m = out.tuftNearest_m = plant.near_m;
         out.farDepth_m = out.tuftFarthest_m = plant.far_m;
         const bool trails = params.tipTrailMinReach_px > 0.f;
@@ -315,9 +317,12 @@ struct Segmenter::Impl {
         });
         stage(out, "partition", nullptr, [&](StageReport& r) {
             for (auto& cluster : out.clusters) {
+                const int firstId = static_cast<int>(out.blades.size()) + 1;
                 auto blades =
-                    seg::partitionCluster(cluster, mask, depth_mm, out.edgeRaggedness, params,
-                                          static_cast<int>(out.blades.size()) + 1, r);
+                    params.partition == PartitionMethod::StemGraph
+                        ? seg::partitionByStem(cluster, mask, params, firstId, out.plantBase_px, r)
+                        : seg::partitionCluster(cluster, mask, depth_mm, out.edgeRaggedness, params,
+                                                firstId, r);
                 seg::flagBlades(blades, cluster, mask.size(), sensed, params, out.edgeRaggedness);
                 for (auto& b : blades) {
                     const auto tip = static_cast<size_t>(b.tipIndex);

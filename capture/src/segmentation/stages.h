@@ -65,7 +65,8 @@ struct FoundPlant {
     cv::Mat1b candidates;  // readings tip trails may follow: the plant's depths, no plane, no
                            // other cluster, no pot
     float near_m = 0.f, far_m = 0.f;
-    std::string whyNot;  // "no plant in view: ..." when not found
+    cv::Point2f base_px;  // where it stands: the top middle of its pot, else its lowest row's
+    std::string whyNot;   // "no plant in view: ..." when not found
 };
 FoundPlant findPlant(const cv::Mat1w& depth_mm, const Intrinsics& intrinsics,
                      const SegmenterParams& params, StageReport& report);
@@ -149,6 +150,17 @@ std::vector<BladeContour> partitionCluster(BladeCluster& cluster, const cv::Mat1
                                            const cv::Mat1w& depth_mm, float raggedness,
                                            const SegmenterParams& params, int firstId,
                                            StageReport& report);
+// stem_partition.cpp: PartitionMethod::StemGraph. The cluster's skeleton walked from its base
+// point; pixels with two or more tips beyond them are the stem; each tip's branch back to the
+// stem is a leaf, with the cluster pixels nearest it. Contours run from the leaf's base (where
+// it meets the stem) round its tip and back.
+// `plantBase` (when known, from PlantFinding::Clusters): where the plant stands; the skeleton is
+// walked from its pixel nearest that point rather than from the cluster's lowest point, which
+// on a plant of drooping leaves is a leaf's tip.
+std::vector<BladeContour> partitionByStem(BladeCluster& cluster, const cv::Mat1b& mask,
+                                          const SegmenterParams& params, int firstId,
+                                          const std::optional<cv::Point2f>& plantBase,
+                                          StageReport& report);
 // fork_partition.cpp: the pixels of the fork zone (between each blade's two valleys and the base
 // point) re-decided by the blades' centre lines continued to the base and by depth. Box
 // coordinates: `owner` (blade index + 1) and `region` cover the cluster's box at `origin` of the

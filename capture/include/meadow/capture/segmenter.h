@@ -51,6 +51,11 @@ enum class BladeMaskMethod {
             // NearestContour (needs ReferencePoint::BasePoint; with the centre it is
             // NearestContour)
 };
+// How a cluster is cut into blades.
+enum class PartitionMethod {
+    Contour,    // Fan & Sheng 2017: minima of the contour's distance to the base (a fan of blades)
+    StemGraph,  // the skeleton's tree from the base: leaves cut where they leave a stem
+};
 // How the plant is told from the rest of the scene when no depth band is given.
 enum class PlantFinding {
     DepthMode,  // the nearest dominant depth mode (a tuft before a far background)
@@ -70,6 +75,10 @@ inline constexpr EnumNames<PlaneMethod, 3> kPlaneMethodNames{{{
     {PlaneMethod::None, "none"},
     {PlaneMethod::Ransac, "ransac"},
     {PlaneMethod::OrganizedMultiPlane, "organized-multi-plane"},
+}}};
+inline constexpr EnumNames<PartitionMethod, 2> kPartitionMethodNames{{{
+    {PartitionMethod::Contour, "contour"},
+    {PartitionMethod::StemGraph, "stem-graph"},
 }}};
 inline constexpr EnumNames<PlantFinding, 2> kPlantFindingNames{{{
     {PlantFinding::DepthMode, "depth-mode"},
@@ -199,6 +208,10 @@ struct SegmenterParams {
     float fragmentLinkAngle_deg = 30.0f;
 
     // --- Partition (Sec. 4.2).
+    PartitionMethod partition = PartitionMethod::Contour;
+    // StemGraph: a skeleton branch shorter than this from its tip to the stem is a spur of the
+    // edge, not a leaf (docs/capture.md#partition-by-the-stem).
+    float minLeafBranch_px = 15.0f;
     ReferencePoint reference = ReferencePoint::BasePoint;
     float baseBandFraction = 0.05f;  // BasePoint: lowest share of the cluster's height used
     float smoothingSigma_px = 2.0f;  // Gaussian along the contour, in contour samples
@@ -293,6 +306,8 @@ struct Segmentation {
     // PlantFinding::Clusters found nothing in the scene that could be a plant (noBladesReason
     // says what it saw instead).
     bool noPlant = false;
+    // Where the plant stands in the image (PlantFinding::Clusters: the top of its pot).
+    std::optional<cv::Point2f> plantBase_px;
     [[nodiscard]] bool empty() const { return blades.empty(); }
     [[nodiscard]] std::vector<cv::Point> cutPoints_px() const;
     [[nodiscard]] double totalTime_ms() const;
