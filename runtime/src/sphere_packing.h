@@ -21,7 +21,7 @@ struct SpherePackingParams {
 struct SpherePacking {
     std::vector<CollisionSphere> spheres;  // in the mesh's coordinates, largest first
     float coverage = 0.f;  // share of the inside voxels within half a voxel of some sphere
-    float voxel_m = 0.f;                   // the voxel size used
+    float voxel_m = 0.f;   // the voxel size used
 };
 
 // Throws RuntimeError naming the mesh's file when it encloses no volume (an open surface, a

@@ -4,8 +4,8 @@
 // leak or undefined behaviour the sanitizers see, is a defect the fuzzer reports.
 #include <cstddef>
 #include <cstdint>
-#include <cstdlib>
 #include <cstdio>
+#include <cstdlib>
 #include <exception>
 #include <string>
 

@@ -6,9 +6,9 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <glm/geometric.hpp>
 #include <random>
-#include <cstdio>
 
 #include "collider_shapes.h"
 #include "meadow/runtime/error.h"

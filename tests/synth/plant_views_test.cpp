@@ -109,12 +109,12 @@ TEST_P(RealPlantViews, ARealMaizeShootsDepthAndLabelsMatchItsScannedPoints) {
         // themselves lie about a millimetre off their points (the scan's own scatter: each
         // point is covered by the splats of its neighbours, the nearest of which is seen).
         const float axial_m = model.noise.axialSigma_m(options.distance_m, 0.f);
-        const float step_m =
-            model.noise.quantisation
-                ? disparityStep_m(options.distance_m, model.intrinsics.fx_px,
-                                  model.noise.baseline_m, model.noise.subpixel)
-                : 0.f;
-        EXPECT_LT(median, std::sqrt(axial_m * axial_m + step_m * step_m / 12.f)) << "view " << view.truth.index;
+        const float step_m = model.noise.quantisation
+                                 ? disparityStep_m(options.distance_m, model.intrinsics.fx_px,
+                                                   model.noise.baseline_m, model.noise.subpixel)
+                                 : 0.f;
+        EXPECT_LT(median, std::sqrt(axial_m * axial_m + step_m * step_m / 12.f))
+            << "view " << view.truth.index;
         EXPECT_GE(labelled, 0.95 * near) << "view " << view.truth.index;
         // Every organ's truth is there, and the leaves the camera sees show.
         int shown = 0;
