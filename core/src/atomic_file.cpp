@@ -12,17 +12,23 @@ namespace meadow {
 namespace fs = std::filesystem;
 
 AtomicFile::AtomicFile(fs::path path) : path_(std::move(path)), tmp_(temporaryFor(path_)) {
+    // Registered before anything is created: once an interrupted run's cleanup has begun,
+    // registering waits for the end, so no folder is made that the cleanup has already passed.
+    registerTemporary(tmp_);
     std::error_code ec;
     if (path_.has_parent_path()) {
         fs::create_directories(path_.parent_path(), ec);
-        if (ec)
+        if (ec) {
+            unregisterTemporary(tmp_);
             throw Error("cannot create folder " + path_.parent_path().string() + " for " +
                         path_.filename().string() + ": " + ec.message());
+        }
     }
-    if (fs::is_directory(path_, ec))
+    if (fs::is_directory(path_, ec)) {
+        unregisterTemporary(tmp_);
         throw Error("cannot write " + path_.string() + ": it is a folder; choose a file name");
+    }
     sweepStaleTemporaries(path_);
-    registerTemporary(tmp_);
     out_.open(tmp_, std::ios::binary | std::ios::trunc);
     if (!out_) {
         const int error = errno;

@@ -5,6 +5,7 @@
 #include <unistd.h>
 
 #include <cerrno>
+#include <chrono>
 #include <map>
 #include <mutex>
 #include <system_error>
@@ -40,20 +41,32 @@ sigset_t cleanupSignals() {
 // Called once, on the way out. The lock is never released: a thread still writing blocks in
 // registerTemporary instead of creating a temporary nobody would remove. Each temporary is
 // first renamed, so a thread writing into a staged folder by its old name cannot put a file
-// back into it while it is being removed.
+// back into it while it is being removed. A thread already past registering may still make the
+// folder again (creating a file's parent folders): the temporaries are removed again until two
+// passes in a row find none of them, for at most kCleanupPasses passes.
 void removeRegistered() {
+    constexpr int kCleanupPasses = 20;
+    constexpr auto kBetweenPasses = std::chrono::milliseconds(20);
     Registry& r = registry();
     r.mutex.lock();
-    for (const auto& [path, restoreTo] : r.paths) {
-        std::error_code ignored;
-        if (!restoreTo.empty() && !fs::exists(fs::symlink_status(restoreTo, ignored))) {
-            fs::rename(path, restoreTo, ignored);
-            continue;
+    int quiet = 0;
+    for (int pass = 0; pass < kCleanupPasses && quiet < 2; ++pass) {
+        bool found = false;
+        for (const auto& [path, restoreTo] : r.paths) {
+            std::error_code ignored;
+            if (!fs::exists(fs::symlink_status(path, ignored))) continue;
+            found = true;
+            if (!restoreTo.empty() && !fs::exists(fs::symlink_status(restoreTo, ignored))) {
+                fs::rename(path, restoreTo, ignored);
+                continue;
+            }
+            fs::path going = path;
+            going += ".gone";
+            fs::rename(path, going, ignored);
+            fs::remove_all(ignored ? path : going, ignored);
         }
-        fs::path going = path;
-        going += ".gone";
-        fs::rename(path, going, ignored);
-        fs::remove_all(ignored ? path : going, ignored);
+        quiet = found ? 0 : quiet + 1;
+        if (quiet < 2) std::this_thread::sleep_for(kBetweenPasses);
     }
 }
 
