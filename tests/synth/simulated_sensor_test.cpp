@@ -19,7 +19,9 @@
 namespace {
 
 using meadow::capture::Intrinsics;
+using meadow::synth::addQuad;
 using meadow::synth::axialSigma_m;
+using meadow::synth::boxMesh;
 using meadow::synth::disparityStep_m;
 using meadow::synth::LabelledMesh;
 using meadow::synth::NoiseModel;
@@ -30,33 +32,12 @@ constexpr std::uint64_t kSeed = 20121013;
 constexpr float kDegree = std::numbers::pi_v<float> / 180.f;
 constexpr std::uint16_t kPlaneLabel = 7;
 
-// Appends the quad a-b-c-d (in order around its border) as two triangles.
-void addQuad(LabelledMesh& mesh, glm::vec3 a, glm::vec3 b, glm::vec3 c, glm::vec3 d) {
-    const auto base = static_cast<unsigned>(mesh.positions_m.size());
-    mesh.positions_m.insert(mesh.positions_m.end(), {a, b, c, d});
-    mesh.triangles.push_back({base, base + 1, base + 2});
-    mesh.triangles.push_back({base, base + 2, base + 3});
-}
-
 // A rectangle facing the camera at depth z_m spanning [x0, x1] x [y0, y1] (metres).
 LabelledMesh frontalRect(float x0, float x1, float y0, float y1, float z_m, std::uint16_t label) {
     LabelledMesh mesh;
     mesh.label = label;
     addQuad(mesh, {x0, y0, z_m}, {x1, y0, z_m}, {x1, y1, z_m}, {x0, y1, z_m});
     return mesh;
-}
-
-// A closed axis-aligned box.
-LabelledMesh box(glm::vec3 lo, glm::vec3 hi, std::uint16_t label) {
-    LabelledMesh m;
-    m.label = label;
-    addQuad(m, {lo.x, lo.y, lo.z}, {hi.x, lo.y, lo.z}, {hi.x, hi.y, lo.z}, {lo.x, hi.y, lo.z});
-    addQuad(m, {lo.x, lo.y, hi.z}, {hi.x, lo.y, hi.z}, {hi.x, hi.y, hi.z}, {lo.x, hi.y, hi.z});
-    addQuad(m, {lo.x, lo.y, lo.z}, {lo.x, hi.y, lo.z}, {lo.x, hi.y, hi.z}, {lo.x, lo.y, hi.z});
-    addQuad(m, {hi.x, lo.y, lo.z}, {hi.x, hi.y, lo.z}, {hi.x, hi.y, hi.z}, {hi.x, lo.y, hi.z});
-    addQuad(m, {lo.x, lo.y, lo.z}, {hi.x, lo.y, lo.z}, {hi.x, lo.y, hi.z}, {lo.x, lo.y, hi.z});
-    addQuad(m, {lo.x, hi.y, lo.z}, {hi.x, hi.y, lo.z}, {hi.x, hi.y, hi.z}, {lo.x, hi.y, hi.z});
-    return m;
 }
 
 // A plane through (0, 0, z_m) turned by `angle` about the camera's y axis (0 = facing the
@@ -239,10 +220,10 @@ TEST(SimulatedSensor, QuantisationStepsAreZSquaredOver8FxBWithin15PercentAt1mAnd
 
 TEST(SimulatedSensor, NoneGivesTheExactDepthRoundedToMillimetres) {
     const SimulatedSensor sensor(Intrinsics::kinectV1(), NoiseModel::none());
-    const SimulatedFrame frame =
-        sensor.render({turnedPlane(1.2f, 35.f * kDegree, 0.5f, 0.3f, kPlaneLabel),
-                       box({-0.1f, -0.1f, 0.3f}, {0.05f, 0.05f, 0.35f}, 3)},  // nearer than 0.4 m
-                      kSeed);
+    const SimulatedFrame frame = sensor.render(
+        {turnedPlane(1.2f, 35.f * kDegree, 0.5f, 0.3f, kPlaneLabel),
+         boxMesh({-0.1f, -0.1f, 0.3f}, {0.05f, 0.05f, 0.35f}, 3)},  // nearer than 0.4 m
+        kSeed);
     int rendered = 0;
     for (int y = 0; y < frame.depth_mm.rows; ++y)
         for (int x = 0; x < frame.depth_mm.cols; ++x) {
@@ -321,7 +302,7 @@ TEST(SimulatedSensor, LabelsAreExactlyTheNearestMeshsLabel) {
 TEST(SimulatedSensor, SameSeedIsBitIdenticalAndAnotherSeedDiffers) {
     const SimulatedSensor sensor;  // every term nominal
     const std::vector<LabelledMesh> scene{frontalRect(-2.f, 2.f, -2.f, 2.f, 2.0f, 1),
-                                          box({-0.15f, -0.1f, 1.f}, {0.1f, 0.2f, 1.2f}, 2),
+                                          boxMesh({-0.15f, -0.1f, 1.f}, {0.1f, 0.2f, 1.2f}, 2),
                                           turnedPlane(1.4f, 70.f * kDegree, 0.3f, 0.1f, 3)};
     const SimulatedFrame a = sensor.render(scene, kSeed);
     const SimulatedFrame b = sensor.render(scene, kSeed);
@@ -361,9 +342,10 @@ TEST(SimulatedSensor, NoReadingWhereNothingWasRenderedWithLateralNoiseOff) {
     noise.lateral = false;        // ... the one term that moves silhouettes outwards is off
     noise.flyingPixelRate = 1.f;  // flying pixels only ever move readings between surfaces
     const SimulatedSensor sensor(Intrinsics::kinectV1(), noise);
-    const SimulatedFrame frame = sensor.render({box({-0.1f, -0.1f, 0.8f}, {0.1f, 0.1f, 0.9f}, 1),
-                                                frontalRect(-0.4f, 0.4f, -0.3f, 0.3f, 1.5f, 2)},
-                                               kSeed);
+    const SimulatedFrame frame =
+        sensor.render({boxMesh({-0.1f, -0.1f, 0.8f}, {0.1f, 0.1f, 0.9f}, 1),
+                       frontalRect(-0.4f, 0.4f, -0.3f, 0.3f, 1.5f, 2)},
+                      kSeed);
     const int stray = cv::countNonZero((frame.exact_m == 0.f) & (frame.depth_mm != 0));
     EXPECT_EQ(stray, 0);
     EXPECT_GT(cv::countNonZero(frame.depth_mm), 60000);  // the wall is ~307 x 230 px
@@ -462,9 +444,10 @@ TEST(SimulatedSensor, FlyingPixelsLieBetweenSurfacesOnEdgesAtTheConfiguredRate) 
     noise.minDepth_m = 0.4f;
     noise.maxDepth_m = 8.f;
     const SimulatedSensor sensor(Intrinsics::kinectV1(), noise);
-    const SimulatedFrame frame = sensor.render({box({-0.15f, -0.1f, 0.9f}, {0.15f, 0.1f, 1.f}, 1),
-                                                frontalRect(-1.f, 1.f, -1.f, 1.f, 1.6f, 2)},
-                                               kSeed);
+    const SimulatedFrame frame =
+        sensor.render({boxMesh({-0.15f, -0.1f, 0.9f}, {0.15f, 0.1f, 1.f}, 1),
+                       frontalRect(-1.f, 1.f, -1.f, 1.f, 1.6f, 2)},
+                      kSeed);
     const cv::Mat1b candidates = flyingCandidates(frame.exact_m);
     const int candidateCount = cv::countNonZero(candidates);
     int flying = 0;
@@ -487,8 +470,9 @@ TEST(SimulatedSensor, FlyingPixelsLieBetweenSurfacesOnEdgesAtTheConfiguredRate) 
 TEST(SimulatedSensor,
      ProjectorShadowLiesLeftOfAForegroundBoxWithWidthBaselineTimesFocalTimesInverseDepthGap) {
     const float zForeground_m = 1.0f, zWall_m = 1.5f;
-    const std::vector<LabelledMesh> scene{box({-0.1f, -0.1f, zForeground_m}, {0.1f, 0.1f, 1.1f}, 1),
-                                          frontalRect(-1.f, 1.f, -1.f, 1.f, zWall_m, 2)};
+    const std::vector<LabelledMesh> scene{
+        boxMesh({-0.1f, -0.1f, zForeground_m}, {0.1f, 0.1f, 1.1f}, 1),
+        frontalRect(-1.f, 1.f, -1.f, 1.f, zWall_m, 2)};
     const Intrinsics k = Intrinsics::kinectV1();
     const double expectedWidth_px =
         0.075 * k.fx_px * (1.0 / zForeground_m - 1.0 / zWall_m);  // 14.4

@@ -77,6 +77,15 @@ std::vector<Sample> samples(const cv::Mat1w& depth_mm, const cv::Mat1b& mask, co
     return out;
 }
 
+// The median depth of the samples (not empty).
+float medianDepth_m(const std::vector<Sample>& s) {
+    std::vector<float> depths;
+    depths.reserve(s.size());
+    for (const Sample& e : s) depths.push_back(e.p.z);
+    std::nth_element(depths.begin(), depths.begin() + depths.size() / 2, depths.end());
+    return depths[depths.size() / 2];
+}
+
 pcl::PointCloud<pcl::PointXYZ>::Ptr cloudOf(const std::vector<Sample>& s) {
     auto cloud = pcl::make_shared<pcl::PointCloud<pcl::PointXYZ>>();
     cloud->reserve(s.size());
@@ -113,19 +122,16 @@ std::vector<ScenePlane> removeScenePlanes(const cv::Mat1w& depth_mm, const Intri
                                           const SegmenterParams& p, cv::Mat1b& rest,
                                           StageReport& report) {
     std::vector<ScenePlane> removed;
-    const std::size_t all = samples(depth_mm, rest, k, kRansacStride_px).size();
+    std::vector<Sample> s = samples(depth_mm, rest, k, kRansacStride_px);
+    const std::size_t all = s.size();
     for (int attempt = 0; attempt < p.maxScenePlanes; ++attempt) {
-        const std::vector<Sample> s = samples(depth_mm, rest, k, kRansacStride_px);
+        if (attempt > 0) s = samples(depth_mm, rest, k, kRansacStride_px);
         if (s.size() < 100) break;
         const auto cloud = cloudOf(s);
         pcl::SACSegmentation<pcl::PointXYZ> fit;
         fit.setModelType(pcl::SACMODEL_PLANE);
         fit.setMethodType(pcl::SAC_RANSAC);
-        std::vector<float> depths;
-        for (const Sample& e : s) depths.push_back(e.p.z);
-        std::nth_element(depths.begin(), depths.begin() + depths.size() / 2, depths.end());
-        fit.setDistanceThreshold(
-            planeTolerance_m(p.scenePlaneDistance_m, depths[depths.size() / 2]));
+        fit.setDistanceThreshold(planeTolerance_m(p.scenePlaneDistance_m, medianDepth_m(s)));
         fit.setMaxIterations(kRansacIterations);
         fit.setInputCloud(cloud);
         srand(kRansacSeed + attempt);  // PCL's RANSAC draws from rand()
@@ -223,10 +229,7 @@ std::vector<Cluster> euclideanClusters(const cv::Mat1w& depth_mm, const Intrinsi
     pcl::EuclideanClusterExtraction<pcl::PointXYZ> extraction;
     // Samples spread apart, and readings scatter, with depth: the tolerance grows as the plane
     // tolerance does, at the median depth of what is left.
-    std::vector<float> depths;
-    for (const Sample& e : s) depths.push_back(e.p.z);
-    std::nth_element(depths.begin(), depths.begin() + depths.size() / 2, depths.end());
-    const float tolerance_m = planeTolerance_m(p.clusterTolerance_m, depths[depths.size() / 2]);
+    const float tolerance_m = planeTolerance_m(p.clusterTolerance_m, medianDepth_m(s));
     extraction.setClusterTolerance(tolerance_m);
     extraction.setMinClusterSize(p.minClusterPoints);
     extraction.setMaxClusterSize(static_cast<pcl::uindex_t>(s.size()));
@@ -272,18 +275,20 @@ std::vector<Cluster> euclideanClusters(const cv::Mat1w& depth_mm, const Intrinsi
                 }
             if (best > 0) out[static_cast<std::size_t>(best - 1)].mask(y, x) = 255;
         }
+    // Each cluster is measured over its own box, not the frame: a room leaves dozens of them.
     for (Cluster& c : out) {
-        const cv::Moments m = cv::moments(c.mask, true);
+        const cv::Rect box = cv::boundingRect(c.mask);
+        if (box.empty()) continue;
+        const cv::Moments m = cv::moments(c.mask(box), true);
         c.area_px = static_cast<int>(m.m00);
-        if (c.area_px == 0) continue;
-        c.centroid_px = {static_cast<float>(m.m10 / m.m00), static_cast<float>(m.m01 / m.m00)};
+        c.centroid_px = {static_cast<float>(box.x + m.m10 / m.m00),
+                         static_cast<float>(box.y + m.m01 / m.m00)};
         std::vector<std::uint16_t> depths;
-        for (int y = 0; y < depth_mm.rows; ++y)
-            for (int x = 0; x < depth_mm.cols; ++x)
+        for (int y = box.y; y < box.y + box.height; ++y)
+            for (int x = box.x; x < box.x + box.width; ++x)
                 if (c.mask(y, x)) depths.push_back(depth_mm(y, x));
         std::nth_element(depths.begin(), depths.begin() + depths.size() / 2, depths.end());
         c.medianDepth_m = depths[depths.size() / 2] / kMillimetresPerMetre;
-        const cv::Rect box = cv::boundingRect(c.mask);
         c.height_m = static_cast<float>(box.height) * c.medianDepth_m / k.fy_px;
     }
     std::erase_if(out, [](const Cluster& c) { return c.area_px == 0; });
@@ -358,8 +363,9 @@ FoundPlant findPlant(const cv::Mat1w& depth_mm, const Intrinsics& k, const Segme
     std::vector<Cluster> clusters = euclideanClusters(depth_mm, k, p, rest);
     for (Cluster& c : clusters) {
         int near = 0;
-        for (int y = 0; y < depth_mm.rows; ++y)
-            for (int x = 0; x < depth_mm.cols; ++x) {
+        const cv::Rect box = cv::boundingRect(c.mask);
+        for (int y = box.y; y < box.y + box.height; ++y)
+            for (int x = box.x; x < box.x + box.width; ++x) {
                 if (!c.mask(y, x)) continue;
                 const glm::vec3 v = k.backProject(static_cast<float>(x), static_cast<float>(y),
                                                   depth_mm(y, x) / kMillimetresPerMetre);

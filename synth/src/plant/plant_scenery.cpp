@@ -18,20 +18,6 @@ LabelledMesh quad(glm::vec3 a, glm::vec3 b, glm::vec3 c, glm::vec3 d, std::uint1
     return {{a, b, c, d}, {{0u, 1u, 2u}, {0u, 2u, 3u}}, label};
 }
 
-LabelledMesh box(glm::vec3 lo, glm::vec3 hi, std::uint16_t label) {
-    LabelledMesh m;
-    m.label = label;
-    for (int i = 0; i < 8; ++i)
-        m.positions_m.push_back({i & 1 ? hi.x : lo.x, i & 2 ? hi.y : lo.y, i & 4 ? hi.z : lo.z});
-    const unsigned faces[6][4] = {{0, 1, 3, 2}, {4, 6, 7, 5}, {0, 4, 5, 1},
-                                  {2, 3, 7, 6}, {0, 2, 6, 4}, {1, 5, 7, 3}};
-    for (const auto& f : faces) {
-        m.triangles.emplace_back(f[0], f[1], f[2]);
-        m.triangles.emplace_back(f[0], f[2], f[3]);
-    }
-    return m;
-}
-
 // A truncated cone open at the top (the pot's wall) and a disc of soil just below its rim.
 LabelledMesh pot(float radius_m, float height_m) {
     LabelledMesh m;
@@ -80,9 +66,9 @@ Scenery benchScenery(float plantHeight_m, float wallBehind_m, std::uint64_t seed
                              rng.uniform(0.1f, 0.2f));
         const float x = side * rng.uniform(2.f * s.potRadius_m + 0.1f, 2.f * s.potRadius_m + 0.4f);
         const float z = -rng.uniform(0.45f, 0.85f) * wallBehind_m;
-        s.meshes.push_back(box({x - 0.5f * size.x, floor, z - 0.5f * size.z},
-                               {x + 0.5f * size.x, floor + size.y, z + 0.5f * size.z},
-                               kClutterLabel));
+        s.meshes.push_back(boxMesh({x - 0.5f * size.x, floor, z - 0.5f * size.z},
+                                   {x + 0.5f * size.x, floor + size.y, z + 0.5f * size.z},
+                                   kClutterLabel));
     }
     return s;
 }

@@ -310,27 +310,6 @@ void countRuns(const std::vector<cv::Mat1w>& frames, const std::vector<Step>& st
         }
 }
 
-// Appends the quad a-b-c-d (in order around its border) as two triangles.
-void addQuad(LabelledMesh& mesh, glm::vec3 a, glm::vec3 b, glm::vec3 c, glm::vec3 d) {
-    const auto base = static_cast<unsigned>(mesh.positions_m.size());
-    mesh.positions_m.insert(mesh.positions_m.end(), {a, b, c, d});
-    mesh.triangles.push_back({base, base + 1, base + 2});
-    mesh.triangles.push_back({base, base + 2, base + 3});
-}
-
-// A closed axis-aligned box between corners lo and hi (camera space, metres).
-LabelledMesh box(glm::vec3 lo, glm::vec3 hi, std::uint16_t label) {
-    LabelledMesh m;
-    m.label = label;
-    addQuad(m, {lo.x, lo.y, lo.z}, {hi.x, lo.y, lo.z}, {hi.x, hi.y, lo.z}, {lo.x, hi.y, lo.z});
-    addQuad(m, {lo.x, lo.y, hi.z}, {hi.x, lo.y, hi.z}, {hi.x, hi.y, hi.z}, {lo.x, hi.y, hi.z});
-    addQuad(m, {lo.x, lo.y, lo.z}, {lo.x, hi.y, lo.z}, {lo.x, hi.y, hi.z}, {lo.x, lo.y, hi.z});
-    addQuad(m, {hi.x, lo.y, lo.z}, {hi.x, hi.y, lo.z}, {hi.x, hi.y, hi.z}, {hi.x, lo.y, hi.z});
-    addQuad(m, {lo.x, lo.y, lo.z}, {hi.x, lo.y, lo.z}, {hi.x, lo.y, hi.z}, {lo.x, lo.y, hi.z});
-    addQuad(m, {lo.x, hi.y, lo.z}, {hi.x, hi.y, lo.z}, {hi.x, hi.y, hi.z}, {lo.x, hi.y, hi.z});
-    return m;
-}
-
 // The mesh turned by angle_deg about the vertical (y) axis through the centre of its bounds.
 LabelledMesh turned(LabelledMesh mesh, float angle_deg) {
     glm::vec3 lo = mesh.positions_m.front();
@@ -410,12 +389,14 @@ std::vector<LabelledMesh> calibrationRoom() {
     // Each box is turned a few degrees about its vertical axis, as furniture stands: a face
     // parallel to the image would hold one depth, so all its pixels would sit at one point
     // between two disparity levels and its temporal sigma would depend on where that is.
-    room.push_back(turned(box({-0.8f, -1.2f, 1.0f}, {-0.364f, 0.09f, 1.3f}, 2), 8.f));  // door
-    room.push_back(turned(box({-0.45f, 0.06f, 0.65f}, {-0.25f, kFloor_m, 0.8f}, 3), -6.f));
-    room.push_back(turned(box({-0.28f, 0.085f, 0.8f}, {-0.14f, kFloor_m, 1.0f}, 4), 10.f));
-    room.push_back(turned(box({-0.28f, -0.05f, 2.75f}, {0.1f, kFloor_m, 3.1f}, 5), -9.f));  // chair
-    room.push_back(turned(box({0.45f, -0.6f, 1.3f}, {1.0f, kFloor_m, 1.8f}, 6), -7.f));  // wardrobe
-    room.push_back(turned(box({0.22f, 0.25f, 2.1f}, {0.7f, kFloor_m, 2.6f}, 7), -8.f));  // desk
+    room.push_back(turned(boxMesh({-0.8f, -1.2f, 1.0f}, {-0.364f, 0.09f, 1.3f}, 2), 8.f));  // door
+    room.push_back(turned(boxMesh({-0.45f, 0.06f, 0.65f}, {-0.25f, kFloor_m, 0.8f}, 3), -6.f));
+    room.push_back(turned(boxMesh({-0.28f, 0.085f, 0.8f}, {-0.14f, kFloor_m, 1.0f}, 4), 10.f));
+    room.push_back(
+        turned(boxMesh({-0.28f, -0.05f, 2.75f}, {0.1f, kFloor_m, 3.1f}, 5), -9.f));  // chair
+    room.push_back(
+        turned(boxMesh({0.45f, -0.6f, 1.3f}, {1.0f, kFloor_m, 1.8f}, 6), -7.f));  // wardrobe
+    room.push_back(turned(boxMesh({0.22f, 0.25f, 2.1f}, {0.7f, kFloor_m, 2.6f}, 7), -8.f));  // desk
     return room;
 }
 

@@ -16,6 +16,11 @@ struct LabelledMesh {
     std::uint16_t label = 0;
 };
 
+// Appends the quad a-b-c-d (in order around its border) as two triangles.
+void addQuad(LabelledMesh& mesh, glm::vec3 a, glm::vec3 b, glm::vec3 c, glm::vec3 d);
+// A closed axis-aligned box between corners lo and hi (metres), six quads.
+[[nodiscard]] LabelledMesh boxMesh(glm::vec3 lo, glm::vec3 hi, std::uint16_t label);
+
 // The blade-local mesh placed in camera space by a rigid cameraFromBlade and labelled.
 [[nodiscard]] LabelledMesh placeBlade(const modeling::TriangleMesh& bladeLocal,
                                       const glm::mat4& cameraFromBlade, std::uint16_t label);
