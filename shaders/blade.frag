@@ -3,7 +3,7 @@
 in vec3 teWorld_m;
 in vec3 teNormal;
 in float teHeightFraction;
-in flat uint teBladeIndex;
+in flat uint teBladeKey;
 out vec4 fragColor;
 
 layout(std140, binding = FRAME_UBO_BINDING) uniform Frame { FrameGpu frame; };
@@ -21,6 +21,9 @@ float bladeHash(uint i) {
 }
 
 void main() {
+#ifdef SHADOW_PASS
+    return;  // depth only
+#endif
     vec3 toLight = normalize(frame.lightDirection.xyz);
     float intensity = frame.lightDirection.w;
     vec3 toEye = normalize(frame.cameraPosition_time.xyz - teWorld_m);
@@ -28,12 +31,13 @@ void main() {
     vec3 n = normalize(teNormal);
     if (dot(n, toEye) < 0.0) n = -n;
 
-    float variation = bladeHash(teBladeIndex);
+    float variation = bladeHash(teBladeKey);
     vec3 albedo = mix(uRootColor, uTipColor, teHeightFraction) * (0.8 + 0.4 * variation);
     float ao = mix(uAoAtRoot, 1.0, teHeightFraction);
 
     float front = max(dot(n, toLight), 0.0);
     float back = max(dot(-n, toLight), 0.0);
-    vec3 color = albedo * ao * (uAmbient + intensity * (front + uTranslucency * back));
-    fragColor = vec4(linearToDisplay(color), 1.0);
+    float direct = intensity * shadowedLight(teWorld_m, n, frame);
+    vec3 color = albedo * ao * (uAmbient + direct * (front + uTranslucency * back));
+    fragColor = vec4(linearToDisplay(withAerialPerspective(color, teWorld_m, frame)), 1.0);
 }

@@ -16,7 +16,7 @@ patch in uint tcBladeIndex;
 out vec3 teWorld_m;
 out vec3 teNormal;
 out float teHeightFraction;       // v
-out flat uint teBladeIndex;
+out flat uint teBladeKey;         // the same for a blade in every frame (its root's bits)
 
 // The blade's cross-section at height v as its two edges, left (u = 0) and right (u = 1), in
 // the paper's interpolation parameter t between c0 and c1 (Jahrmann & Wimmer 2017, Sec. 6.2,
@@ -106,6 +106,11 @@ void main() {
     teWorld_m = p;
     teNormal = normal;
     teHeightFraction = v;
-    teBladeIndex = i;
+    // Not the index: a tiled scene's blades are emitted anew each frame, in any order.
+    teBladeKey = floatBitsToUint(blade.v0_height.x) * 0x9e3779b1u ^ floatBitsToUint(blade.v0_height.z);
+#ifdef SHADOW_PASS
+    gl_Position = frame.lightClipFromWorld * vec4(p, 1.0);
+#else
     gl_Position = frame.clipFromWorld * vec4(p, 1.0);
+#endif
 }

@@ -6,6 +6,7 @@
 
 #include "gl/dispatch.h"
 #include "meadow/runtime/error.h"
+#include "tiled_field.h"
 
 namespace meadow::runtime {
 namespace {
@@ -14,12 +15,17 @@ namespace {
 // looks smooth at about 8 px per straight piece).
 constexpr float kPixelsPerSegment = 8.f;
 
-gl::ShaderProgram makeOpaqueProgram() {
-    return gl::ShaderProgram({.label = "opaque meshes",
+std::vector<gl::ShaderDefine> shadowDefines(bool shadowPass) {
+    if (!shadowPass) return {};
+    return {{"SHADOW_PASS", "1"}};
+}
+
+gl::ShaderProgram makeOpaqueProgram(bool shadowPass = false) {
+    return gl::ShaderProgram({.label = shadowPass ? "opaque meshes (shadow map)" : "opaque meshes",
                               .stages = {{GL_VERTEX_SHADER, "depth_prepass.vert"},
                                          {GL_FRAGMENT_SHADER, "depth_prepass.frag"}},
                               .commonFiles = {"common_shading.glsl"},
-                              .defines = {}});
+                              .defines = shadowDefines(shadowPass)});
 }
 
 gl::ShaderProgram makeChunkProgram() {
@@ -29,15 +35,16 @@ gl::ShaderProgram makeChunkProgram() {
                               .defines = {}});
 }
 
-gl::ShaderProgram makeBladeProgram() {
-    return gl::ShaderProgram(
-        {.label = "blades",
-         .stages = {{GL_VERTEX_SHADER, "blade.vert"},
-                    {GL_TESS_CONTROL_SHADER, "blade.tesc"},
-                    {GL_TESS_EVALUATION_SHADER, "blade.tese"},
-                    {GL_FRAGMENT_SHADER, "blade.frag"}},
-         .commonFiles = {"common_blade.glsl", "common_shading.glsl"},
-         .defines = {{"BLADE_PIXELS_PER_SEGMENT", std::to_string(kPixelsPerSegment)}}});
+gl::ShaderProgram makeBladeProgram(bool shadowPass = false) {
+    std::vector<gl::ShaderDefine> defines = shadowDefines(shadowPass);
+    defines.push_back({"BLADE_PIXELS_PER_SEGMENT", std::to_string(kPixelsPerSegment)});
+    return gl::ShaderProgram({.label = shadowPass ? "blades (shadow map)" : "blades",
+                              .stages = {{GL_VERTEX_SHADER, "blade.vert"},
+                                         {GL_TESS_CONTROL_SHADER, "blade.tesc"},
+                                         {GL_TESS_EVALUATION_SHADER, "blade.tese"},
+                                         {GL_FRAGMENT_SHADER, "blade.frag"}},
+                              .commonFiles = {"common_blade.glsl", "common_shading.glsl"},
+                              .defines = defines});
 }
 
 void checkComplete(const gl::Framebuffer& fb, const char* what) {
@@ -93,7 +100,8 @@ DrawPass::DrawPass(int width_px, int height_px, int msaaSamples)
     checkComplete(resolvedDepthTarget_, "resolved depth");
 }
 
-void DrawPass::begin(glm::vec3 sky) const {
+void DrawPass::begin(const LightDescription& light) {
+    const glm::vec3 sky = light.skyColor;
     glBindFramebuffer(GL_FRAMEBUFFER, msaaTarget_.id());
     glViewport(0, 0, width_, height_);
     glEnable(GL_MULTISAMPLE);
@@ -105,6 +113,30 @@ void DrawPass::begin(glm::vec3 sky) const {
     const float far = 1.f;
     glClearNamedFramebufferfv(msaaTarget_.id(), GL_COLOR, 0, color);
     glClearNamedFramebufferfv(msaaTarget_.id(), GL_DEPTH, 0, &far);
+    if (!light.zenithColor) return;
+    if (!skyProgram_)
+        skyProgram_.emplace(gl::ProgramSource{
+            .label = "sky",
+            .stages = {{GL_VERTEX_SHADER, "sky.vert"}, {GL_FRAGMENT_SHADER, "sky.frag"}},
+            .commonFiles = {"common_shading.glsl"},
+            .defines = {}});
+    glDisable(GL_DEPTH_TEST);
+    skyProgram_->use();
+    glBindVertexArray(emptyVertexArray_.id());
+    glDrawArrays(GL_TRIANGLES, 0, 3);
+    glEnable(GL_DEPTH_TEST);
+}
+
+const gl::ShaderProgram& DrawPass::terrainProgram() {
+    if (!terrainProgram_)
+        terrainProgram_.emplace(gl::ProgramSource{
+            .label = "terrain and far field",
+            .stages = {{GL_VERTEX_SHADER, "depth_prepass.vert"},
+                       {GL_FRAGMENT_SHADER, "terrain.frag"}},
+            .commonFiles = {"shared/physics_params.h", "shared/tiling_types.h",
+                            "common_physics.glsl", "common_tiles.glsl", "common_shading.glsl"},
+            .defines = {}});
+    return *terrainProgram_;
 }
 
 void DrawPass::depthPrepass(const SceneGpu& gpu) const {
@@ -129,18 +161,34 @@ void DrawPass::resolveDepth() const {
     glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
 }
 
-void DrawPass::shadeOpaque(const SceneGpu& gpu, const SceneDescription& scene) const {
+void DrawPass::shadeOpaque(const SceneGpu& gpu, const SceneDescription& scene,
+                           const TiledField* tiled, float pixelSize_perM) {
     glBindFramebuffer(GL_FRAMEBUFFER, msaaTarget_.id());
-    // Same program and vertices as the pre-pass, so the depths match exactly (GLSL invariance
-    // within one program); nothing is written twice.
+    // The same vertex shader as the pre-pass with gl_Position invariant, so the depths match
+    // exactly, also for the terrain's own program; nothing is written twice.
     glDepthFunc(GL_LEQUAL);
     glDepthMask(GL_FALSE);
+    if (tiled) {
+        tiled->bindForShading();
+        const gl::ShaderProgram& t = terrainProgram();
+        t.use();
+        const FarFieldSlices& slices = tiled->farField();
+        t.set("uFarField", tiled->hasFarField() ? 1 : 0);
+        t.set("uSlicesPerAxis", slices.perAxis);
+        t.set("uSliceSpacing_m", slices.spacing_m);
+        t.set("uSliceHeight_m", slices.height_m);
+        t.set("uPixelSize_perM", pixelSize_perM);
+        t.set("uTranslucency", scene.render.translucency);
+        t.set("uAmbient", scene.light.ambient);
+    }
     opaqueProgram_.use();
     opaqueProgram_.set("uAmbient", scene.light.ambient);
     for (const GpuMesh& m : gpu.meshes) {
         if (!m.visible) continue;
-        opaqueProgram_.set("uAlbedo", m.albedo);
-        opaqueProgram_.set("uOffset_m", m.offset_m);
+        const gl::ShaderProgram& program = m.terrain ? terrainProgram() : opaqueProgram_;
+        program.use();
+        program.set("uAlbedo", m.albedo);
+        program.set("uOffset_m", m.offset_m);
         glBindVertexArray(m.vertexArray.id());
         glDrawElements(GL_TRIANGLES, m.indexCount, GL_UNSIGNED_INT, nullptr);
     }
@@ -167,6 +215,14 @@ void DrawPass::drawBlades(const SceneGpu& gpu, const SceneDescription& scene,
     bladeProgram_.set("uAmbient", scene.light.ambient);
     bladeProgram_.set("uTranslucency", r.translucency);
     bladeProgram_.set("uAoAtRoot", r.aoAtRoot);
+    if (wireframe_) glPolygonMode(GL_FRONT_AND_BACK, GL_LINE);
+    drawIndirectBlades(gpu);
+    if (wireframe_) glPolygonMode(GL_FRONT_AND_BACK, GL_FILL);
+}
+
+void DrawPass::drawIndirectBlades(const SceneGpu& gpu) {
+    GLint program = 0;  // the caller's blade program, set up
+    glGetIntegerv(GL_CURRENT_PROGRAM, &program);
     glBindVertexArray(emptyVertexArray_.id());
     glPatchParameteri(GL_PATCH_VERTICES, 1);
     glMemoryBarrier(GL_COMMAND_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);
@@ -182,12 +238,68 @@ void DrawPass::drawBlades(const SceneGpu& gpu, const SceneDescription& scene,
     chunkProgram_.set("uChunkCount", static_cast<unsigned>(chunkCount));
     gl::dispatchGroups((chunkCount + BLADE_WORKGROUP_SIZE - 1) / BLADE_WORKGROUP_SIZE);
     glMemoryBarrier(GL_COMMAND_BARRIER_BIT);
-    bladeProgram_.use();
+    glUseProgram(static_cast<GLuint>(program));
     glBindBuffer(GL_DRAW_INDIRECT_BUFFER, chunks_.id());
-    if (wireframe_) glPolygonMode(GL_FRONT_AND_BACK, GL_LINE);
     glMultiDrawArraysIndirect(GL_PATCHES, nullptr, static_cast<GLsizei>(chunkCount), 0);
-    if (wireframe_) glPolygonMode(GL_FRONT_AND_BACK, GL_FILL);
     glBindBuffer(GL_DRAW_INDIRECT_BUFFER, 0);
+}
+
+void DrawPass::renderShadowMap(const SceneGpu& gpu, const SceneDescription& scene) {
+    const int size = scene.shadows.mapSize_px;
+    if (shadowSize_ != size) {
+        shadowMap_ = gl::Texture::create(GL_TEXTURE_2D);
+        glTextureStorage2D(shadowMap_.id(), 1, GL_DEPTH_COMPONENT32F, size, size);
+        glTextureParameteri(shadowMap_.id(), GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+        glTextureParameteri(shadowMap_.id(), GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+        glTextureParameteri(shadowMap_.id(), GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+        glTextureParameteri(shadowMap_.id(), GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+        glTextureParameteri(shadowMap_.id(), GL_TEXTURE_COMPARE_MODE, GL_COMPARE_REF_TO_TEXTURE);
+        glTextureParameteri(shadowMap_.id(), GL_TEXTURE_COMPARE_FUNC, GL_LEQUAL);
+        shadowTarget_ = gl::Framebuffer::create();
+        glNamedFramebufferTexture(shadowTarget_.id(), GL_DEPTH_ATTACHMENT, shadowMap_.id(), 0);
+        glNamedFramebufferDrawBuffer(shadowTarget_.id(), GL_NONE);
+        checkComplete(shadowTarget_, "shadow map");
+        shadowSize_ = size;
+        opaqueShadowProgram_.emplace(makeOpaqueProgram(true));
+        bladeShadowProgram_.emplace(makeBladeProgram(true));
+    }
+    glBindTextureUnit(SHADOW_TEXTURE_UNIT, 0);  // not sampled while it is drawn into
+    glBindFramebuffer(GL_FRAMEBUFFER, shadowTarget_.id());
+    glViewport(0, 0, size, size);
+    const float far = 1.f;
+    glClearNamedFramebufferfv(shadowTarget_.id(), GL_DEPTH, 0, &far);
+    glEnable(GL_DEPTH_TEST);
+    glDepthMask(GL_TRUE);
+    glDepthFunc(GL_LESS);
+    glDisable(GL_MULTISAMPLE);
+    opaqueShadowProgram_->use();
+    for (const GpuMesh& m : gpu.meshes) {
+        if (!m.visible) continue;
+        opaqueShadowProgram_->set("uOffset_m", m.offset_m);
+        glBindVertexArray(m.vertexArray.id());
+        glDrawElements(GL_TRIANGLES, m.indexCount, GL_UNSIGNED_INT, nullptr);
+    }
+    const RenderSettings& r = scene.render;
+    bladeShadowProgram_->use();
+    // A shadow needs the blade's shape, not its detail.
+    bladeShadowProgram_->set("uMaxTessLevel", std::min(r.maxTessLevel, 4.f));
+    bladeShadowProgram_->set("uAcrossSegments", 1);
+    bladeShadowProgram_->set("uShapeOverride", r.shapeOverride);
+    bladeShadowProgram_->set("uDisplacement", 0);
+    bladeShadowProgram_->set("uPixelSize_perM", 0.f);
+    bladeShadowProgram_->set("uMinWidth_px", 0.f);
+    drawIndirectBlades(gpu);
+    glEnable(GL_MULTISAMPLE);
+    glBindFramebuffer(GL_FRAMEBUFFER, msaaTarget_.id());
+    glViewport(0, 0, width_, height_);
+    glBindTextureUnit(SHADOW_TEXTURE_UNIT, shadowMap_.id());
+}
+
+std::size_t DrawPass::targetBytes() const {
+    const std::size_t pixels = static_cast<std::size_t>(width_) * static_cast<std::size_t>(height_);
+    // Multisampled RGBA8 + depth32F, resolved RGBA8 + depth32F, the shadow map's depth32F.
+    return pixels * static_cast<std::size_t>(samples_) * 8 + pixels * 8 +
+           static_cast<std::size_t>(shadowSize_) * static_cast<std::size_t>(shadowSize_) * 4;
 }
 
 void DrawPass::resolveColor() const {

@@ -3,6 +3,7 @@
 // the opaque meshes, tessellated blades from the indirect draw command, MSAA resolve, and
 // read-back or a copy into a window.
 #include <opencv2/core/mat.hpp>
+#include <optional>
 
 #include "gl/gl_object.h"
 #include "gl/shader_program.h"
@@ -11,6 +12,8 @@
 
 namespace meadow::runtime {
 
+class TiledField;
+
 // CV_8UC3 BGR, top row first, from GL's RGBA8 rows, bottom row first.
 [[nodiscard]] cv::Mat bgrFromBottomUpRgba(const void* rgba, int width_px, int height_px);
 
@@ -18,13 +21,18 @@ class DrawPass {
 public:
     DrawPass(int width_px, int height_px, int msaaSamples);
 
-    // Binds the multisampled target and clears it to the sky colour (display values) and far.
-    void begin(glm::vec3 skyDisplayColor) const;
+    // Binds the multisampled target and clears it to the sky colour (display values) and far;
+    // with a zenith colour, draws the sky's gradient (the frame's uniform block must be bound).
+    void begin(const LightDescription& light);
     // Opaque meshes into depth only; the single-sample copy feeds occlusion culling.
     void depthPrepass(const SceneGpu& gpu) const;
     void resolveDepth() const;
-    // Opaque meshes shaded where the pre-pass left their depth.
-    void shadeOpaque(const SceneGpu& gpu, const SceneDescription& scene) const;
+    // The shadow map from the frame's lightClipFromWorld: opaque meshes and the blades of the
+    // indirect draw (call after the culling or emit pass). Binds it for the shading passes.
+    void renderShadowMap(const SceneGpu& gpu, const SceneDescription& scene);
+    // Opaque meshes shaded where the pre-pass left their depth; the terrain with its far field.
+    void shadeOpaque(const SceneGpu& gpu, const SceneDescription& scene, const TiledField* tiled,
+                     float pixelSize_perM);
     // Blades of the visible-index buffer, as many as the indirect command says.
     void drawBlades(const SceneGpu& gpu, const SceneDescription& scene, float pixelSize_perM);
     void resolveColor() const;
@@ -39,10 +47,15 @@ public:
     void packColor(const gl::Buffer& pixelPack) const;
 
     [[nodiscard]] const gl::Texture& depthTexture() const { return resolvedDepth_; }
+    // Bytes of the colour, depth and shadow targets.
+    [[nodiscard]] std::size_t targetBytes() const;
     [[nodiscard]] int width_px() const { return width_; }
     [[nodiscard]] int height_px() const { return height_; }
 
 private:
+    void drawIndirectBlades(const SceneGpu& gpu);
+    const gl::ShaderProgram& terrainProgram();
+
     int width_, height_, samples_;
     gl::Renderbuffer msaaColor_, msaaDepth_;
     gl::Framebuffer msaaTarget_;
@@ -53,6 +66,12 @@ private:
     std::uint32_t chunkCapacity_ = 0;
     gl::VertexArray emptyVertexArray_;  // the blade draw has no vertex attributes
     bool wireframe_ = false;
+    // Made when a scene first needs them (each costs a compile).
+    std::optional<gl::ShaderProgram> skyProgram_, terrainProgram_, opaqueShadowProgram_,
+        bladeShadowProgram_;
+    gl::Texture shadowMap_;
+    gl::Framebuffer shadowTarget_;
+    int shadowSize_ = 0;
 };
 
 }  // namespace meadow::runtime

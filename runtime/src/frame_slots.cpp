@@ -43,7 +43,7 @@ StageTimers::StageTimers() {
 
 void StageTimers::readInto(FrameStats& st) const {
     double* gpuTimes[kStageCount] = {&st.gpuPrepass_ms, &st.gpuPhysics_ms, &st.gpuCulling_ms,
-                                     &st.gpuDraw_ms, &st.gpuResolve_ms};
+                                     &st.gpuShadows_ms, &st.gpuDraw_ms,    &st.gpuResolve_ms};
     for (int s = 0; s < kStageCount; ++s) {
         *gpuTimes[s] = 0.0;
         if (!ran_[s]) continue;

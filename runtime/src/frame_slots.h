@@ -15,7 +15,7 @@ namespace meadow::runtime {
 
 class DrawPass;
 
-enum Stage { kPrepass, kPhysics, kCulling, kDraw, kResolve, kStageCount };
+enum Stage { kPrepass, kPhysics, kCulling, kShadows, kDraw, kResolve, kStageCount };
 
 class StageTimers {
 public:

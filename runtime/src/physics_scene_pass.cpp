@@ -47,28 +47,28 @@ public:
         const float start_s = in.time_s - static_cast<float>(steps.count) * steps.step_s;
         for (int k = 1; k <= steps.count; ++k) {
             const float t_s = start_s + static_cast<float>(k) * steps.step_s;
-            placeSpheres(in, t_s);
+            collidersAt(in.scene, in.gpu, t_s, spheres_);
             pass_.dispatch(in.gpu.blades, in.gpu.rests, in.gpu.bladeCount, spheres_, settings,
                            steps.step_s, t_s);
         }
     }
 
 private:
-    // Every collider's spheres where the collider is at time t_s (it may move between sub-steps).
-    void placeSpheres(const PassInputs& in, float t_s) {
-        spheres_.clear();
-        for (std::size_t i = 0; i < in.gpu.colliderSpheres.size(); ++i) {
-            const glm::vec3 at = in.scene.colliders[i].positionAt(t_s);
-            for (const CollisionSphere& s : in.gpu.colliderSpheres[i])
-                spheres_.push_back({at + s.center_m, s.radius_m});
-        }
-    }
-
     PhysicsPass pass_;
     std::vector<CollisionSphere> spheres_;
 };
 
 }  // namespace
+
+void collidersAt(const SceneDescription& scene, const SceneGpu& gpu, float time_s,
+                 std::vector<CollisionSphere>& spheres) {
+    spheres.clear();
+    for (std::size_t i = 0; i < gpu.colliderSpheres.size(); ++i) {
+        const glm::vec3 at = scene.colliders[i].positionAt(time_s);
+        for (const CollisionSphere& s : gpu.colliderSpheres[i])
+            spheres.push_back({at + s.center_m, s.radius_m});
+    }
+}
 
 PhysicsSubsteps physicsSubsteps(float maxStiffness_per_s, float frameStep_s) {
     constexpr float kMaxFrame_s = 0.1f;

@@ -23,4 +23,8 @@ struct PhysicsSubsteps {
 };
 [[nodiscard]] PhysicsSubsteps physicsSubsteps(float maxStiffness_per_s, float frameStep_s);
 
+// Every collider's spheres where the collider is at time_s (it may move between sub-steps).
+void collidersAt(const SceneDescription& scene, const SceneGpu& gpu, float time_s,
+                 std::vector<CollisionSphere>& spheres);
+
 }  // namespace meadow::runtime

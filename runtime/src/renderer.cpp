@@ -8,12 +8,14 @@
 #include <vector>
 
 #include "draw_pass.h"
+#include "frame_setup.h"
 #include "frame_slots.h"
 #include "gl/gl_object.h"
 #include "meadow/runtime/error.h"
 #include "meadow/runtime/gl_context.h"
 #include "renderer_passes.h"
 #include "scene_gpu.h"
+#include "tiled_field.h"
 
 namespace meadow::runtime {
 namespace {
@@ -40,14 +42,6 @@ void restoreAllVisible(const SceneGpu& gpu) {
                          static_cast<GLsizeiptr>(all.size() * sizeof(std::uint32_t)), all.data());
 }
 
-glm::mat4 viewFromWorldOf(const CameraPose& pose) {
-    const glm::vec3 forward = glm::normalize(pose.target_m - pose.position_m);
-    // World +Y is up unless the camera looks straight up or down.
-    const glm::vec3 up =
-        std::abs(forward.y) > 0.999f ? glm::vec3(0.f, 0.f, -1.f) : glm::vec3(0.f, 1.f, 0.f);
-    return glm::lookAt(pose.position_m, pose.target_m, up);
-}
-
 }  // namespace
 
 struct Renderer::Impl {
@@ -59,19 +53,36 @@ struct Renderer::Impl {
     StageTimers timers;  // renderFrame's
     FrameSlots slots;    // renderFrames'
     std::unique_ptr<BladeComputePass> physics, culling;
+    std::unique_ptr<TiledField> tiled;  // a tiled scene's patch, pool and passes
     float previousTime_s = -1.f;
     bool cullingEnabled = true;
     bool visibleIndicesAreAll = true;  // false once a culling pass has compacted them
     int viewFrames = 0;                // renderView's calls so far
 
     Impl(GlContext& c, const SceneDescription& s) : Impl(c, s, buildSceneBlades(s)) {}
+    // Camera keys, targets and collider paths of a terrain with relative heights, on the ground.
+    static SceneDescription placedOnTerrain(SceneDescription s, const SceneBlades& b) {
+        if (!b.terrain || !s.terrain || !s.terrain->relativeHeights) return s;
+        const auto lift = [&](glm::vec3& p) { p.y += b.terrain->heightAt({p.x, p.z}); };
+        for (CameraKey& k : s.camera.path) {
+            lift(k.position_m);
+            lift(k.target_m);
+        }
+        for (ColliderDescription& c : s.colliders) {
+            lift(c.center_m);
+            for (ColliderKey& k : c.path) lift(k.position_m);
+        }
+        return s;
+    }
     Impl(GlContext& c, const SceneDescription& s, SceneBlades b)
         : context(c),
-          scene(s),
+          scene(placedOnTerrain(s, b)),
           blades(std::move(b)),
           gpu(uploadScene(blades, s)),
           draw(s.render.width_px, s.render.height_px, s.render.msaaSamples),
           slots(draw.width_px(), draw.height_px()) {
+        if (blades.terrain)
+            tiled = std::make_unique<TiledField>(context, scene, *blades.terrain, blades.tilePatch);
         context.checkErrors("uploading the scene " + s.file.string());
     }
 
@@ -91,7 +102,25 @@ Renderer::Renderer(GlContext& context, const SceneDescription& scene, SceneBlade
     : impl_(std::make_unique<Impl>(context, scene, std::move(blades))) {}
 Renderer::~Renderer() = default;
 
-std::size_t Renderer::bladeCount() const { return impl_->gpu.bladeCount; }
+std::size_t Renderer::bladeCount() const {
+    return impl_->tiled ? impl_->tiled->instancedBlades() : impl_->gpu.bladeCount;
+}
+std::size_t Renderer::gpuMemoryBytes() const {
+    const Impl& im = *impl_;
+    const SceneGpu& g = im.gpu;
+    std::size_t bytes =
+        std::size_t{g.bladeCount} *
+            (sizeof(gpu::BladeGpu) + sizeof(gpu::BladeRestGpu) + sizeof(std::uint32_t)) +
+        std::size_t{g.patchCount} * sizeof(gpu::PatchGpu) +
+        im.blades.archetypes.size() * sizeof(gpu::ArchetypeGpu);
+    for (const GpuMesh& m : g.meshes)
+        bytes += static_cast<std::size_t>(m.indexCount) * sizeof(std::uint32_t) +
+                 static_cast<std::size_t>(m.vertexCount) * 6 * sizeof(float);
+    bytes += im.draw.targetBytes();
+    if (im.tiled) bytes += im.tiled->gpuBytes();
+    return bytes;
+}
+
 std::size_t Renderer::patchCount() const { return impl_->gpu.patchCount; }
 void Renderer::setPhysicsPass(std::unique_ptr<BladeComputePass> pass) {
     impl_->physics = std::move(pass);
@@ -113,52 +142,55 @@ FrameStats Renderer::Impl::recordFrame(int frameIndex, StageTimers& frameTimers)
 FrameStats Renderer::Impl::recordFrameAt(const CameraPose& pose, float time_s, float deltaTime_s,
                                          StageTimers& frameTimers) {
     previousTime_s = time_s;
-    const float aspect = static_cast<float>(draw.width_px()) / static_cast<float>(draw.height_px());
-    const glm::mat4 clipFromView =
-        glm::perspective(glm::radians(scene.camera.verticalFov_deg), aspect, scene.camera.near_m,
-                         scene.camera.far_m);
-    gpu::FrameGpu frame{};
-    frame.viewFromWorld = viewFromWorldOf(pose);
-    frame.clipFromWorld = clipFromView * frame.viewFromWorld;
-    frame.cameraPosition_time = glm::vec4(pose.position_m, time_s);
-    frame.lightDirection = glm::vec4(scene.light.direction, scene.light.intensity);
-    frame.viewport_px =
-        glm::vec4(draw.width_px(), draw.height_px(), scene.camera.near_m, scene.camera.far_m);
-    frame.wind = glm::vec4(scene.wind.direction, scene.wind.waveAmplitude_m_s);
+    const gpu::FrameGpu frame = frameGpuOf(scene, pose, time_s, draw.width_px(), draw.height_px());
     glNamedBufferSubData(gpu.frame.id(), 0, sizeof frame, &frame);
-    // World size of one pixel at 1 m: the image height spans 2 tan(fov / 2) at unit distance.
-    const float pixelSize_perM = 2.f / (clipFromView[1][1] * static_cast<float>(draw.height_px()));
+    const float pixelSize_perM = pixelSizePerMetre(scene, draw.height_px());
 
     frameTimers.reset();
     gpu.placeColliders(scene, time_s);
     gpu.bindAll();
-    draw.begin(scene.light.skyColor);
+    draw.begin(scene.light);
     frameTimers.time(kPrepass, [&] {
         draw.depthPrepass(gpu);
         draw.resolveDepth();
     });
     const PassInputs inputs{scene, gpu, frame, draw.depthTexture(), time_s, deltaTime_s};
-    if (physics && scene.physics.enabled) frameTimers.time(kPhysics, [&] { physics->run(inputs); });
-    if (culling && cullingEnabled) {
-        frameTimers.time(kCulling, [&] { culling->run(inputs); });
-        visibleIndicesAreAll = false;
+    if (tiled) {
+        // Tiles simulate and emit their own blades; the stored-blade passes have none to work on.
+        frameTimers.time(kPhysics, [&] { tiled->simulate(inputs); });
+        frameTimers.time(kCulling, [&] { tiled->emit(inputs); });
     } else {
-        if (!visibleIndicesAreAll) {
-            restoreAllVisible(gpu);
-            visibleIndicesAreAll = true;
+        if (physics && scene.physics.enabled)
+            frameTimers.time(kPhysics, [&] { physics->run(inputs); });
+        if (culling && cullingEnabled) {
+            frameTimers.time(kCulling, [&] { culling->run(inputs); });
+            visibleIndicesAreAll = false;
+        } else {
+            if (!visibleIndicesAreAll) {
+                restoreAllVisible(gpu);
+                visibleIndicesAreAll = true;
+            }
+            gpu.fillTrivialVisibility();
         }
-        gpu.fillTrivialVisibility();
     }
     gpu.bindAll();  // a pass may have bound other buffers
+    if (scene.shadows.enabled)
+        frameTimers.time(kShadows, [&] { draw.renderShadowMap(gpu, scene); });
     frameTimers.time(kDraw, [&] {
-        draw.shadeOpaque(gpu, scene);
+        // Blades first: the opaque meshes behind them (a tiled scene's terrain with its far
+        // field, the costliest fragments) then fail the depth test before they are shaded.
         draw.drawBlades(gpu, scene, pixelSize_perM);
+        draw.shadeOpaque(gpu, scene, tiled.get(), pixelSize_perM);
     });
     frameTimers.time(kResolve, [&] { draw.resolveColor(); });
 
     FrameStats st;
     st.time_s = time_s;
-    st.bladesTotal = gpu.bladeCount;
+    st.bladesTotal = tiled ? tiled->instancedBlades() : gpu.bladeCount;
+    if (tiled) {
+        st.tilesDrawn = tiled->tilesDrawn();
+        st.tilesSimulated = tiled->pool().activeCount();
+    }
     return st;
 }
 

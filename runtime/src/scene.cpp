@@ -186,11 +186,73 @@ void readCamera(const JsonReader& c, CameraDescription& cam) {
 }
 
 void readLight(const JsonReader& l, LightDescription& light) {
-    l.onlyKeys({"direction", "intensity", "ambient", "sky_color"});
+    l.onlyKeys(
+        {"direction", "intensity", "ambient", "sky_color", "zenith_color", "fog_distance_m"});
     light.direction = normalised(l, "direction", light.direction);
     light.intensity = l.floatNumber("intensity", light.intensity, 0.f, 100.f);
     light.ambient = l.floatNumber("ambient", light.ambient, 0.f, 10.f);
     light.skyColor = l.vec3("sky_color", light.skyColor);
+    if (l.has("zenith_color")) light.zenithColor = l.vec3("zenith_color", light.skyColor);
+    light.fogDistance_m = l.floatNumber("fog_distance_m", light.fogDistance_m, 0.f, 1e6f);
+}
+
+void readShadows(const JsonReader& s, ShadowDescription& sh) {
+    s.onlyKeys({"enabled", "map_size_px", "distance_m", "strength"});
+    sh.enabled = s.boolean("enabled", sh.enabled);
+    sh.mapSize_px = s.integer("map_size_px", sh.mapSize_px, 64, 8192);
+    sh.distance_m = s.floatNumber("distance_m", sh.distance_m, 0.1f, 1e4f);
+    sh.strength = s.floatNumber("strength", sh.strength, 0.f, 1.f);
+}
+
+// A height field this many samples a side at most (16-bit-free R32F texture, 64 MiB).
+constexpr int kMaxTerrainSamples = 4097;
+
+TerrainDescription readTerrain(const JsonReader& t) {
+    t.onlyKeys({"min_xz_m", "max_xz_m", "samples", "relief_m", "feature_size_m", "seed", "albedo",
+                "relative_heights"});
+    TerrainDescription d;
+    const auto xz = [&](std::string_view key, glm::vec2 fallback) {
+        if (!t.has(key)) return fallback;
+        const json& v = t.at(key);
+        if (!v.is_array() || v.size() != 2) t.fail(key, "expected [x, z] in metres");
+        const glm::vec2 p(finiteFloat(v[0], elementPath(t.pathOf(key), 0)),
+                          finiteFloat(v[1], elementPath(t.pathOf(key), 1)));
+        if (std::abs(p.x) > kMaxSceneExtent_m || std::abs(p.y) > kMaxSceneExtent_m)
+            t.fail(key, "lies beyond " + shortNumber(kMaxSceneExtent_m) +
+                            " m from the origin: positions are in metres");
+        return p;
+    };
+    d.minXZ_m = xz("min_xz_m", d.minXZ_m);
+    d.maxXZ_m = xz("max_xz_m", d.maxXZ_m);
+    if (!(d.maxXZ_m.x > d.minXZ_m.x && d.maxXZ_m.y > d.minXZ_m.y))
+        t.fail("", "max_xz_m must be greater than min_xz_m in x and z");
+    d.samples = t.integer("samples", d.samples, 2, kMaxTerrainSamples);
+    d.relief_m = t.floatNumber("relief_m", d.relief_m, 0.f, 1e4f);
+    d.featureSize_m = t.floatNumber("feature_size_m", d.featureSize_m, 1e-2f, 1e6f);
+    d.seed = static_cast<std::uint32_t>(
+        t.integer("seed", static_cast<int>(d.seed), 0, std::numeric_limits<int>::max()));
+    d.albedo = t.vec3("albedo", d.albedo);
+    d.relativeHeights = t.boolean("relative_heights", d.relativeHeights);
+    return d;
+}
+
+TilingDescription readTiling(const JsonReader& t) {
+    t.onlyKeys({"tile_size_m", "near_distance_m", "transition_m", "full_density_distance_m",
+                "active_distance_m", "pool_tiles", "max_drawn_blades", "far_field"});
+    TilingDescription d;
+    d.tileSize_m = t.floatNumber("tile_size_m", d.tileSize_m, 0.25f, 100.f);
+    d.nearDistance_m = t.floatNumber("near_distance_m", d.nearDistance_m, 0.f, 1e4f);
+    d.transition_m = t.floatNumber("transition_m", d.transition_m, 0.f, 1e4f);
+    if (d.transition_m > d.nearDistance_m)
+        t.fail("transition_m",
+               "must not exceed near_distance_m (" + shortNumber(d.nearDistance_m) + " m)");
+    d.fullDensityDistance_m =
+        t.floatNumber("full_density_distance_m", d.fullDensityDistance_m, 0.1f, 1e4f);
+    d.activeDistance_m = t.floatNumber("active_distance_m", d.activeDistance_m, 0.f, 1e3f);
+    d.poolTiles = t.integer("pool_tiles", d.poolTiles, 0, 65536);
+    d.maxDrawnBlades = t.integer("max_drawn_blades", d.maxDrawnBlades, 64, 1 << 26);
+    d.farField = t.boolean("far_field", d.farField);
+    return d;
 }
 
 void readWind(const JsonReader& w, WindDescription& wind) {
@@ -353,10 +415,21 @@ SceneDescription parseSceneDescription(const std::string& jsonText, const fs::pa
         const JsonReader root(doc);
         checkJsonFormat(doc, {kSceneFormat, kSceneVersion});
         root.onlyKeys({"format", "version", "grass", "props", "archetypes", "blades", "camera",
-                       "light", "wind", "colliders", "physics", "culling", "render"});
+                       "light", "wind", "colliders", "physics", "culling", "shadows", "render",
+                       "terrain", "tiling"});
         scene.grassMeshes = readMeshes(root, "grass", SceneMesh{}.albedo, origin);
-        if (scene.grassMeshes.empty())
-            root.fail("grass", "name at least one mesh to grow grass on");
+        if (root.has("terrain")) scene.terrain = readTerrain(root.object("terrain"));
+        if (root.has("tiling")) {
+            if (!scene.terrain)
+                root.fail("tiling", "tiles are laid over a terrain: add a \"terrain\" section");
+            if (!scene.grassMeshes.empty())
+                root.fail("grass", "a tiled scene grows its grass on the terrain; drop \"grass\"");
+            scene.tiling = readTiling(root.object("tiling"));
+        } else if (scene.terrain) {
+            root.fail("terrain", "a terrain is grown with tiles: add a \"tiling\" section");
+        } else if (scene.grassMeshes.empty()) {
+            root.fail("grass", "name at least one mesh to grow grass on (or a terrain and tiling)");
+        }
         scene.props = readMeshes(root, "props", {0.4f, 0.38f, 0.35f}, origin);
         readArchetypes(root, scene, origin);
         readBlades(section(root, "blades"), scene.blades, origin);
@@ -366,6 +439,7 @@ SceneDescription parseSceneDescription(const std::string& jsonText, const fs::pa
         readColliders(root, scene.colliders, origin);
         readPhysics(section(root, "physics"), scene.physics);
         readCulling(section(root, "culling"), scene.culling);
+        readShadows(section(root, "shadows"), scene.shadows);
         readRender(section(root, "render"), scene.render);
     } catch (const JsonError& e) {
         throw RuntimeError(origin.string() + ": " + e.what() +

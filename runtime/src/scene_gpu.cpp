@@ -5,6 +5,8 @@
 #include "ground_maps.h"
 #include "meadow/runtime/error.h"
 #include "patches.h"
+#include "tile_patch.h"
+#include "tiled_field.h"
 
 namespace meadow::runtime {
 namespace {
@@ -28,6 +30,7 @@ GpuMesh uploadMesh(const TriangleMesh& mesh, glm::vec3 albedo) {
     g.vertices = bufferOf(interleaved, 0);
     g.indices = bufferOf(mesh.triangles, 0);
     g.indexCount = static_cast<GLsizei>(mesh.triangles.size() * 3);
+    g.vertexCount = static_cast<GLsizei>(mesh.positions_m.size());
     g.albedo = albedo;
     g.vertexArray = gl::VertexArray::create();
     const GLuint vao = g.vertexArray.id();
@@ -55,6 +58,19 @@ SceneBlades buildSceneBlades(const SceneDescription& scene) {
         out.grassMeshes.push_back(loadGltfTriangles(m.gltf));
     for (const SceneMesh& m : scene.props) out.props.push_back(loadGltfTriangles(m.gltf));
     out.patchSize = patchSizeOf(scene);
+    for (const ColliderDescription& c : scene.colliders) out.colliders.push_back(colliderShape(c));
+    for (const modeling::Archetype& a : scene.archetypes)
+        out.archetypes.push_back(archetypeForGpu(a, a.width.width_m.size() > 2));
+    if (scene.tiling) {
+        out.terrain = makeHeightField(*scene.terrain);
+        out.terrainMesh = terrainMesh(*out.terrain);
+        try {
+            out.tilePatch = buildTilePatch(scene);
+        } catch (const RuntimeError& e) {
+            throw RuntimeError(scene.file.string() + ": " + e.what());
+        }
+        return out;
+    }
 
     SeedingInput input;
     input.meshes = &out.grassMeshes;
@@ -88,28 +104,34 @@ SceneBlades buildSceneBlades(const SceneDescription& scene) {
         out.blades.push_back(restPose(s, scene.archetypes[s.archetype]));
         out.rests.push_back(restState(s, out.blades.back()));
     }
-    // The captured width profile is drawn where it has more than the two samples of a straight
-    // taper; otherwise the nearest analytic shape is.
-    for (const modeling::Archetype& a : scene.archetypes)
-        out.archetypes.push_back(archetypeForGpu(a, a.width.width_m.size() > 2));
-    for (const ColliderDescription& c : scene.colliders) out.colliders.push_back(colliderShape(c));
     return out;
 }
 
 SceneGpu uploadScene(const SceneBlades& b, const SceneDescription& scene) {
     SceneGpu g;
-    g.bladeCount = static_cast<std::uint32_t>(b.blades.size());
     g.patchCount = static_cast<std::uint32_t>(b.patches.size());
-    g.blades = bufferOf(b.blades);
-    g.rests = bufferOf(b.rests);
+    if (scene.tiling) {
+        // Filled each frame by the tiles' emit pass.
+        g.bladeCount = tiledDrawCapacity(*scene.tiling);
+        g.blades = bufferOf(std::vector<gpu::BladeGpu>(g.bladeCount));
+        g.rests = bufferOf(std::vector<gpu::BladeRestGpu>(g.bladeCount));
+    } else {
+        g.bladeCount = static_cast<std::uint32_t>(b.blades.size());
+        g.blades = bufferOf(b.blades);
+        g.rests = bufferOf(b.rests);
+    }
     g.archetypes = bufferOf(b.archetypes);
-    std::vector<std::uint32_t> all(b.blades.size());
+    std::vector<std::uint32_t> all(g.bladeCount);
     std::iota(all.begin(), all.end(), 0u);
     g.visibleIndices = bufferOf(all);
     g.drawCommand = bufferOf(std::vector<gpu::DrawCommandGpu>{{g.bladeCount, 1u, 0u, 0u}});
     g.cullStats = bufferOf(std::vector<gpu::CullStatsGpu>{{0u, 0u, 0u, 0u}});
     g.patches = bufferOf(b.patches);
     g.frame = bufferOf(std::vector<gpu::FrameGpu>(1));
+    if (scene.terrain) {
+        g.meshes.push_back(uploadMesh(b.terrainMesh, scene.terrain->albedo));
+        g.meshes.back().terrain = true;
+    }
     for (std::size_t i = 0; i < b.grassMeshes.size(); ++i)
         g.meshes.push_back(uploadMesh(b.grassMeshes[i], scene.grassMeshes[i].albedo));
     for (std::size_t i = 0; i < b.props.size(); ++i)

@@ -3,6 +3,7 @@
 // opaque meshes, and the CPU-side arrays they were filled from (kept for tests and the CPU
 // reference). Built once per scene; the passes read and write the buffers every frame.
 #include <cstdint>
+#include <optional>
 #include <vector>
 
 #include "collider_shapes.h"
@@ -11,6 +12,8 @@
 #include "scene_mesh.h"
 #include "seeding.h"
 #include "shared/blade_types.h"
+#include "shared/tiling_types.h"
+#include "terrain.h"
 
 namespace meadow::runtime {
 
@@ -27,6 +30,10 @@ struct SceneBlades {
     std::vector<gpu::PatchGpu> patches;
     std::size_t patchSize = 0;
     std::vector<ColliderShape> colliders;  // one per scene collider, in its order
+    // A tiled scene (scene.tiling): the terrain and the patch every tile draws; no stored blades.
+    std::optional<HeightField> terrain;
+    TriangleMesh terrainMesh;
+    std::vector<gpu::TileInstanceGpu> tilePatch;
 };
 
 // The patch size of the scene rounded up to whole workgroups.
@@ -39,12 +46,15 @@ struct GpuMesh {
     gl::Buffer indices;   // uint32 triangles
     gl::VertexArray vertexArray;
     GLsizei indexCount = 0;
+    GLsizei vertexCount = 0;
     glm::vec3 albedo{0.f};
     glm::vec3 offset_m{0.f};  // added to every vertex: where a collider has moved
     bool visible = true;      // a hidden collider still pushes blades, it is not drawn
+    bool terrain = false;     // a tiled scene's ground: shaded with the far field
 };
 
 struct SceneGpu {
+    // Stored blades; for a tiled scene the room for the blades emitted each frame.
     std::uint32_t bladeCount = 0;
     std::uint32_t patchCount = 0;
     gl::Buffer blades;          // BladeGpu[bladeCount]            BLADE_SSBO_BINDING
@@ -55,7 +65,7 @@ struct SceneGpu {
     gl::Buffer cullStats;    // CullStatsGpu                    CULL_STATS_SSBO_BINDING
     gl::Buffer patches;      // PatchGpu[patchCount]            PATCH_SSBO_BINDING
     gl::Buffer frame;        // FrameGpu                        FRAME_UBO_BINDING
-    std::vector<GpuMesh> meshes;  // grass ground first, then props, then colliders
+    std::vector<GpuMesh> meshes;  // terrain or grass ground first, then props, then colliders
     std::size_t firstColliderMesh = 0;
     // Each collider's spheres relative to its position (ColliderDescription::positionAt).
     std::vector<std::vector<CollisionSphere>> colliderSpheres;

@@ -27,6 +27,10 @@ using mat4 = glm::mat4;
 #define COLLIDER_SSBO_BINDING 7
 #define DRAW_CHUNK_SSBO_BINDING 8  // draw pass only: the chunked draw commands
 
+// Texture units of the draw pass (the culling pass's depth is unit 0, the terrain's 1 and 2).
+#define FAR_FIELD_TEXTURE_UNIT 5
+#define SHADOW_TEXTURE_UNIT 6
+
 // Blades per indirect draw command (the draw pass splits the culling output into such chunks).
 #define BLADE_DRAW_CHUNK 512
 
@@ -107,6 +111,10 @@ struct FrameGpu {
     vec4 lightDirection;       // xyz unit direction toward the light (world), w intensity
     vec4 viewport_px;          // xy framebuffer size (px), z near (m), w far (m)
     vec4 wind;                 // xyz wind direction (unit, world), w wave amplitude (m/s)
+    mat4 worldFromClip;        // inverse of clipFromWorld: the sky's view rays
+    mat4 lightClipFromWorld;   // the shadow map's projection (render.shadows)
+    vec4 horizon;              // xyz linear sky colour at the horizon, w fog distance (m), 0 none
+    vec4 zenith;               // xyz linear sky colour straight up, w shadow strength (0: none)
 };
 
 #ifdef __cplusplus
@@ -115,6 +123,7 @@ static_assert(sizeof(BladeRestGpu) == 32);
 static_assert(sizeof(ArchetypeGpu) == 96);
 static_assert(sizeof(DrawCommandGpu) == 16 && sizeof(CullStatsGpu) == 16);
 static_assert(sizeof(PatchGpu) == 48 && sizeof(ColliderGpu) == 16);
-static_assert(sizeof(FrameGpu) == 192 && offsetof(FrameGpu, cameraPosition_time) == 128);
+static_assert(sizeof(FrameGpu) == 352 && offsetof(FrameGpu, cameraPosition_time) == 128 &&
+              offsetof(FrameGpu, horizon) == 320);
 }  // namespace meadow::runtime::gpu
 #endif

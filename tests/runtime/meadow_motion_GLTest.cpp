@@ -10,21 +10,12 @@
 #include "meadow/runtime/physics.h"
 #include "meadow/runtime/renderer.h"
 #include "meadow/runtime/scene.h"
+#include "support/grass_pixels.h"
 
 namespace meadow::runtime {
 namespace {
 
-// Share of the image's pixels that are grass: green clearly above red and blue (the ground is
-// brown, the sky blue).
-double grassShare(const cv::Mat& bgr) {
-    int grass = 0;
-    for (int y = 0; y < bgr.rows; ++y)
-        for (int x = 0; x < bgr.cols; ++x) {
-            const cv::Vec3b p = bgr.at<cv::Vec3b>(y, x);
-            grass += p[1] > p[2] + 8 && p[1] > p[0] + 8;
-        }
-    return static_cast<double>(grass) / static_cast<double>(bgr.total());
-}
+using meadow::test::grassShare;
 
 // Done when: after 5 s of the bundled scene with its wind, the grass-pixel share is at least
 // 85 % of frame 0's. The camera is held still (the scene's own path moves it).

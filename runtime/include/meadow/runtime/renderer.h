@@ -80,7 +80,12 @@ public:
     // On: blades are drawn as the edges of their tessellated triangles. Off by default.
     void setWireframe(bool enabled);
 
+    // Blades planted: stored ones, or for a tiled scene the patch on every tile after the
+    // density map.
     [[nodiscard]] std::size_t bladeCount() const;
+    // GPU memory of the scene's buffers and textures and the render targets, bytes (what meadow
+    // allocated; the driver's own overhead is not counted).
+    [[nodiscard]] std::size_t gpuMemoryBytes() const;
     [[nodiscard]] std::size_t patchCount() const;
 
     // The compute passes (physics, culling) plug in here; without them blades keep their rest

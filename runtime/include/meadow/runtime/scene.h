@@ -71,7 +71,52 @@ struct LightDescription {
     glm::vec3 direction{0.4f, 0.8f, 0.3f};  // toward the light (world), normalised on load
     float intensity = 1.1f;
     float ambient = 0.25f;
-    glm::vec3 skyColor{0.55f, 0.7f, 0.9f};  // display colour of the background
+    glm::vec3 skyColor{0.55f, 0.7f, 0.9f};  // display colour of the background (at the horizon)
+    // Display colour straight up; the sky blends from skyColor at the horizon to it. Unset: the
+    // sky is one colour.
+    std::optional<glm::vec3> zenithColor;
+    // Aerial perspective: a surface this far away keeps 1/e of its colour and takes the rest from
+    // the horizon's sky colour. 0: no fog.
+    float fogDistance_m = 0.f;
+};
+
+// Shadows of blades and props from the light (a shadow map centred on the near field).
+struct ShadowDescription {
+    bool enabled = false;
+    int mapSize_px = 2048;
+    float distance_m = 30.f;  // the map covers this far from the camera
+    float strength = 0.6f;    // the share of direct light a shadow takes away
+};
+
+// A height field the grass grows on, for scenes too large for a mesh of blades: value-noise
+// relief over a rectangle of the world's XZ plane (runtime/src/terrain.h).
+struct TerrainDescription {
+    glm::vec2 minXZ_m{-500.f};
+    glm::vec2 maxXZ_m{500.f};
+    int samples = 257;            // grid points along each side
+    float relief_m = 12.f;        // the heights span about this much
+    float featureSize_m = 180.f;  // the size of the largest hills
+    std::uint32_t seed = 1;
+    glm::vec3 albedo{0.16f, 0.12f, 0.06f};  // the soil
+    // The y of camera keys, camera targets and collider positions counts from the terrain
+    // under them, so a path can be written without knowing the hills.
+    bool relativeHeights = true;
+};
+
+// Tile instancing (Fan & Sheng, Sec. 4.5): the terrain is cut into square tiles that all draw the
+// same patch of blades, seeded once with the scene's `blades` settings, turned per tile and
+// thinned by the density map and with distance. Blades are simulated only in tiles near the
+// camera or a collider; the others stand in their rest pose swayed by the wind. Beyond the near
+// distance the grass is drawn as slices on the terrain (the far field).
+struct TilingDescription {
+    float tileSize_m = 4.f;
+    float nearDistance_m = 40.f;        // blades are geometry up to here
+    float transition_m = 10.f;          // blades fade out and the far field in over this band
+    float fullDensityDistance_m = 8.f;  // beyond, the blades thin as (this / distance)^2
+    float activeDistance_m = 6.f;       // tiles this close to the camera or a collider simulate
+    int poolTiles = 96;                 // tiles simulated at once at most
+    int maxDrawnBlades = 1 << 20;       // blades drawn in one frame at most
+    bool farField = true;
 };
 
 // Wind of Jahrmann & Wimmer 2017, Sec. 5.1. It pushes the tip with a velocity (v2 += w dt), so
@@ -159,9 +204,11 @@ struct RenderSettings {
 };
 
 struct SceneDescription {
-    std::filesystem::path file;  // the scene file itself
-    std::vector<SceneMesh> grassMeshes;
+    std::filesystem::path file;          // the scene file itself
+    std::vector<SceneMesh> grassMeshes;  // empty when the grass grows on a tiled terrain
     std::vector<SceneMesh> props;
+    std::optional<TerrainDescription> terrain;
+    std::optional<TilingDescription> tiling;  // set together with terrain
     std::vector<modeling::Archetype> archetypes;
     std::vector<float> archetypeWeights;       // one per archetype, > 0
     std::optional<ArchetypeMap> archetypeMap;  // checked on load (ground_maps.h)
@@ -172,6 +219,7 @@ struct SceneDescription {
     std::vector<ColliderDescription> colliders;
     PhysicsDescription physics;
     CullingDescription culling;
+    ShadowDescription shadows;
     RenderSettings render;
 };
 
