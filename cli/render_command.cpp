@@ -82,8 +82,7 @@ void runRender(const RenderArgs& args) {
     runtime::Renderer renderer(context, scene);
     runtime::installPhysicsPass(renderer, context);
     runtime::installCullingPass(renderer, context);
-    std::cerr << "meadow render: " << renderer.bladeCount() << " blades in "
-              << renderer.patchCount() << " patches on " << context.renderer() << '\n';
+    std::cerr << "meadow render: " << renderer.summary() << " on " << context.renderer() << '\n';
 
     std::string csv = runtime::frameStatsCsvHeader();
     Progress progress("render", static_cast<std::size_t>(args.frames));

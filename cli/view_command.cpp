@@ -153,8 +153,7 @@ void runView(const ViewArgs& args) {
     runtime::Renderer renderer(context, scene);
     runtime::installPhysicsPass(renderer, context);
     runtime::installCullingPass(renderer, context);
-    std::cerr << "meadow view: " << renderer.bladeCount() << " blades in " << renderer.patchCount()
-              << " patches on " << context.renderer() << '\n';
+    std::cerr << "meadow view: " << renderer.summary() << " on " << context.renderer() << '\n';
 
     const bool scripted = args.frames > 0;
     window.setSwapInterval(scripted ? 0 : 1);  // a scripted run waits for no display refresh

@@ -28,7 +28,7 @@ const int MAX_SLICE_CROSSINGS = 12;
 // Lighting of the slices' blades, averaged over blade orientations: sky ambient, and the direct
 // light on a vertical blade's lit side plus what shines through from behind.
 vec3 litBlade(vec3 albedo, float direct) {
-    return albedo * (uAmbient + direct * (0.5 + 0.5 * uTranslucency) * 0.6);
+    return albedo * (uAmbient + direct * (0.5 + 0.5 * uTranslucency) * 0.45);
 }
 
 void main() {

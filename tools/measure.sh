@@ -3,15 +3,17 @@
 # sensor's truth (meadow_accuracy_tradeoff_bench), the sensor models against a real recording
 # (meadow_sensor_calibration_bench), capture on real scanned plants (meadow_plant_bench), the
 # capture front end's speed (meadow_segmentation_bench), the runtime passes
-# (meadow_runtime_bench) and whole rendered frames (meadow_frame_bench). Run through `./meadow.sh measure [--quick] [--out DIR]`, which
-# builds first; --quick is a smoke run (fewer presets, seeds and repetitions, short timings).
+# (meadow_runtime_bench), whole rendered frames (meadow_frame_bench) and the large tiled prairie
+# beside the per-blade meadow (meadow_prairie_bench, group large). Run through
+# `./meadow.sh measure [--quick] [--out DIR] [--only GROUPS]`, which builds first; --quick is a
+# smoke run (fewer presets, seeds, repetitions and frames, short timings).
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 bin=$root/build/default/tests
 out=$root/docs/measurements
 quick=0
 only=""
-usage="usage: meadow.sh measure [--quick] [--out DIR] [--only accuracy|sensors|plants|speed,...]"
+usage="usage: meadow.sh measure [--quick] [--out DIR] [--only accuracy|sensors|plants|speed|large,...]"
 while (($#)); do
   case $1 in
     --quick) quick=1 ;;
@@ -24,7 +26,7 @@ done
 # --only GROUPS: regenerate those groups' tables (and the index), leave the others as they are.
 wanted() { [ -z "$only" ] || [[ $only == *,$1,* ]]; }
 for group in ${only//,/ }; do
-  case $group in accuracy|sensors|plants|speed) ;; *) echo "$usage" >&2; exit 2 ;; esac
+  case $group in accuracy|sensors|plants|speed|large) ;; *) echo "$usage" >&2; exit 2 ;; esac
 done
 mkdir -p "$out"
 out=$(cd "$out" && pwd)
@@ -77,7 +79,13 @@ if wanted speed; then
   speed meadow_frame_bench frame_bench \
     "Whole rendered frames, 640x360, 4x MSAA, over blade counts (meadow_frame_bench)" "${frames[@]}"
 fi
-rm -f "$out/.accuracy.log" "$out/.sensors.log" "$out/.plants.log"
+if wanted large; then
+  step "large meadows: the tiled prairie beside the per-blade meadow, frames and memory"
+  large=(--out "$out" --made "$made")
+  ((quick)) && large+=(--quick)
+  "$bin/meadow_prairie_bench" "${large[@]}" > "$out/.large.log"
+fi
+rm -f "$out/.accuracy.log" "$out/.sensors.log" "$out/.plants.log" "$out/.large.log"
 
 # What each table holds, for the index.
 describe() {
@@ -99,6 +107,8 @@ describe() {
     runtime_passes) echo "physics and culling per blade, CPU reference and GPU pass" ;;
     frame_bench) echo "whole rendered frames over blade counts: all on, no collisions, no culling" ;;
     plant_benchmark) echo "capture on real maize shoots x 12 views x 3 sensors against the truth, beside a plain leaf counter" ;;
+    large_meadow) echo "the tiled 1 km prairie beside the per-blade meadow: frame and stage times, blades drawn and planted, tiles" ;;
+    large_meadow_memory) echo "the same runs' GPU bytes, bytes per planted and drawn blade, peak resident memory" ;;
     sensor_calibration) echo "the simulated sensors' noise figures against the real Kinect recording" ;;
     *) echo "" ;;
   esac

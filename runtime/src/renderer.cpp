@@ -121,6 +121,16 @@ std::size_t Renderer::gpuMemoryBytes() const {
     return bytes;
 }
 
+std::string Renderer::summary() const {
+    if (const TiledField* t = impl_->tiled.get())
+        return std::to_string(t->instancedBlades()) + " blades on " +
+               std::to_string(static_cast<std::size_t>(t->grid().tilesX()) *
+                              static_cast<std::size_t>(t->grid().tilesZ())) +
+               " tiles of one " + std::to_string(t->patchBlades()) + "-blade patch";
+    return std::to_string(impl_->gpu.bladeCount) + " blades in " +
+           std::to_string(impl_->gpu.patchCount) + " patches";
+}
+
 std::size_t Renderer::patchCount() const { return impl_->gpu.patchCount; }
 void Renderer::setPhysicsPass(std::unique_ptr<BladeComputePass> pass) {
     impl_->physics = std::move(pass);

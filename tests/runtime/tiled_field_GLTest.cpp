@@ -60,6 +60,13 @@ struct TiledRun {
     }
 };
 
+cv::Mat renderOnce(GlContext& context, const SceneDescription& scene, int frame = 0) {
+    Renderer renderer(context, scene);
+    cv::Mat image;
+    for (int i = 0; i <= frame; ++i) image = renderer.renderFrame(i).image_bgr;
+    return image;
+}
+
 TEST(TiledFieldGLTest, EmittedBladesStandOnTheTerrainAndNeighbouringTilesTurnThePatch) {
     GlContext context;
     TiledRun run(context, test::tiledScene("tiled_emit"));
@@ -126,6 +133,24 @@ TEST(TiledFieldGLTest, TheDensityMapAndTheDistanceThinTheBladesByThreshold) {
     const double expected = std::pow(4.0 / std::sqrt(7.5 * 7.5 + 1.0), 2.0);
     EXPECT_NEAR(outerDensity / innerDensity, expected, 0.35 * expected);
     EXPECT_NEAR(innerDensity, static_cast<double>(run.blades.tilePatch.size()) / 4.0, 40.0);
+}
+
+TEST(TiledFieldImageGLTest, TheDensityMapLeavesBareGroundWhereItIsBlack) {
+    // Seen from above: the black half of the map is soil, the white half grass.
+    const auto dir = test::freshTestDirectory("tiled_density_image");
+    cv::Mat map(16, 16, CV_8U, cv::Scalar(255));
+    map.colRange(0, 8).setTo(0);
+    cv::imwrite((dir / "density.png").string(), map);
+    const nlohmann::json j = test::tiledSceneJson(
+        {{"blades",
+          {{"density_map",
+            {{"image", "density.png"}, {"min_xz_m", {-30, -30}}, {"max_xz_m", {30, 30}}}}}},
+         {"camera", {{"position_m", {0, 4, 0.01}}, {"target_m", {0, 0, 0}}}},
+         {"render", {{"size_px", {120, 120}}}}});
+    GlContext context;
+    const cv::Mat image = renderOnce(context, loadSceneDescription(test::writeScene(dir, j)));
+    EXPECT_LT(grassShare(image, cv::Rect(0, 0, 50, 120)), 0.02);
+    EXPECT_GT(grassShare(image, cv::Rect(70, 0, 50, 120)), 0.3);
 }
 
 TEST(TiledFieldGLTest, SimulatedTilesComeFromThePoolAndGoBackOnceRecovered) {
@@ -196,13 +221,6 @@ cv::Range groundRows(const gpu::FrameGpu& frame, glm::vec3 camera, float ground_
             std::lround((0.5f - 0.5f * q.y / q.w) * static_cast<float>(height_px)));
     };
     return {row(far_m), row(near_m)};
-}
-
-cv::Mat renderOnce(GlContext& context, const SceneDescription& scene, int frame = 0) {
-    Renderer renderer(context, scene);
-    cv::Mat image;
-    for (int i = 0; i <= frame; ++i) image = renderer.renderFrame(i).image_bgr;
-    return image;
 }
 
 TEST(TiledFieldImageGLTest, TheFarFieldCoversTheGroundToTheHorizon) {

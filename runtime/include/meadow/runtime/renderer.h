@@ -6,6 +6,7 @@
 #include <glm/vec3.hpp>
 #include <memory>
 #include <opencv2/core/mat.hpp>
+#include <string>
 
 #include "meadow/runtime/frame_stats.h"
 #include "meadow/runtime/scene.h"
@@ -87,6 +88,9 @@ public:
     // allocated; the driver's own overhead is not counted).
     [[nodiscard]] std::size_t gpuMemoryBytes() const;
     [[nodiscard]] std::size_t patchCount() const;
+    // One line on what is drawn, e.g. "22016 blades in 86 patches" or "134206920 blades on
+    // 62500 tiles of one 2176-blade patch".
+    [[nodiscard]] std::string summary() const;
 
     // The compute passes (physics, culling) plug in here; without them blades keep their rest
     // pose and all are drawn.
