@@ -22,6 +22,10 @@ uniform float uSliceSpacing_m;
 uniform float uSliceHeight_m;
 uniform float uPixelSize_perM;  // world size of one pixel at 1 m
 uniform float uTranslucency;
+// A slice's averages per band of height, band 0 at the ground (FarFieldSlices).
+const int HEIGHT_BANDS = 8;
+uniform float uBandCoverage[HEIGHT_BANDS];
+uniform vec3 uBandAlbedo[HEIGHT_BANDS];
 
 const int MAX_SLICE_CROSSINGS = 12;
 
@@ -50,6 +54,21 @@ void main() {
         vec3 entry = vWorld_m - ray * inLayer_m;
         float density = terrainDensityAt(vWorld_m.xz, tiling) * farShare;
         float lod = log2(max(distance_m * uPixelSize_perM / (tiling.tile.x / 512.0), 1.0));
+        float bladeLight = frame.lightDirection.w * mix(0.6, 1.0, shadow);
+        // Where neighbouring slice planes are under a few pixels apart their crossings alias
+        // into moire; there the layer is drawn as its averages: the ray's crossings shared out
+        // over the bands of height it passes, top first, each band's coverage per crossing.
+        float spacing_px = uSliceSpacing_m / max(distance_m * uPixelSize_perM, 1e-6);
+        float traced = smoothstep(1.5, 4.0, spacing_px);
+        float crossingsPerBand =
+            inLayer_m * (abs(ray.x) + abs(ray.z)) / uSliceSpacing_m / float(HEIGHT_BANDS);
+        vec3 averageGrass = vec3(0.0);
+        float averageCover = 0.0;
+        for (int b = HEIGHT_BANDS - 1; traced < 1.0 && b >= 0; --b) {
+            float alpha = 1.0 - pow(1.0 - min(uBandCoverage[b] * density, 0.999), crossingsPerBand);
+            averageGrass += (1.0 - averageCover) * alpha * litBlade(uBandAlbedo[b], bladeLight);
+            averageCover += (1.0 - averageCover) * alpha;
+        }
         vec3 grass = vec3(0.0);
         float cover = 0.0;
         // Walk the two families of planes (constant z, constant x) in order along the ray.
@@ -67,7 +86,7 @@ void main() {
         }
         int crossings = 0;
         float walked_m = 0.0;
-        for (; crossings < MAX_SLICE_CROSSINGS && cover < 0.95; ++crossings) {
+        for (; traced > 0.0 && crossings < MAX_SLICE_CROSSINGS && cover < 0.95; ++crossings) {
             int a = next.x < next.y ? 0 : 1;
             float t = next[a];
             if (t > inLayer_m) break;
@@ -83,7 +102,7 @@ void main() {
             vec4 texel = textureLod(slices, uvw, lod);
             float alpha = texel.a * density;
             vec3 albedo = displayToLinear(texel.rgb / max(texel.a, 1e-3));
-            grass += (1.0 - cover) * alpha * litBlade(albedo, frame.lightDirection.w * mix(0.6, 1.0, shadow));
+            grass += (1.0 - cover) * alpha * litBlade(albedo, bladeLight);
             cover += (1.0 - cover) * alpha;
         }
         // Cut short at a grazing angle: the rest of the layer is more of the same grass.
@@ -93,6 +112,8 @@ void main() {
             grass *= (cover + (1.0 - cover) * rest) / cover;
             cover = cover + (1.0 - cover) * rest;
         }
+        grass = mix(averageGrass, grass, traced);
+        cover = mix(averageCover, cover, traced);
         color = grass + (1.0 - cover) * soil;
     }
     fragColor = vec4(linearToDisplay(withAerialPerspective(color, vWorld_m, frame)), 1.0);

@@ -179,6 +179,11 @@ void DrawPass::shadeOpaque(const SceneGpu& gpu, const SceneDescription& scene,
         t.set("uSliceHeight_m", slices.height_m);
         t.set("uPixelSize_perM", pixelSize_perM);
         t.set("uTranslucency", scene.render.translucency);
+        for (int b = 0; b < FarFieldSlices::kHeightBands; ++b) {
+            const std::string i = "[" + std::to_string(b) + "]";
+            t.set(("uBandCoverage" + i).c_str(), slices.bandCoverage[static_cast<std::size_t>(b)]);
+            t.set(("uBandAlbedo" + i).c_str(), slices.bandAlbedo[static_cast<std::size_t>(b)]);
+        }
         t.set("uAmbient", scene.light.ambient);
     }
     opaqueProgram_.use();

@@ -94,13 +94,30 @@ FarFieldSlices buildFarFieldSlices(const std::vector<gpu::TileInstanceGpu>& patc
             }
         }
     }
+    // As terrain.frag sees a far, filtered slice: the covered texels' encoded colour averaged
+    // (an empty texel is black and clear, so colour sums over coverage), then made linear.
+    constexpr int kBands = FarFieldSlices::kHeightBands;
+    std::array<double, kBands> covered{};
+    std::array<glm::dvec3, kBands> encoded{};
+    for (const cv::Mat& layer : s.layers)
+        for (int y = 0; y < layer.rows; ++y) {
+            const int band = std::min(y * kBands / layer.rows, kBands - 1);
+            for (int x = 0; x < layer.cols; ++x) {
+                const cv::Vec4b t = layer.at<cv::Vec4b>(y, x);
+                covered[band] += t[3] / 255.0;
+                for (int c = 0; c < 3; ++c) encoded[band][c] += t[c] / 255.0;
+            }
+        }
+    const double texelsPerBand =
+        static_cast<double>(s.layers.size()) * width_px * height_px / kBands;
+    for (int b = 0; b < kBands; ++b) {
+        s.bandCoverage[b] = static_cast<float>(covered[b] / texelsPerBand);
+        if (covered[b] > 0.0)
+            for (int c = 0; c < 3; ++c)
+                s.bandAlbedo[b][c] =
+                    static_cast<float>(std::pow(std::min(encoded[b][c] / covered[b], 1.0), 2.2));
+    }
     return s;
-}
-
-double meanCoverage(const FarFieldSlices& slices) {
-    double sum = 0.0;
-    for (const cv::Mat& layer : slices.layers) sum += cv::mean(layer)[3] / 255.0;
-    return slices.layers.empty() ? 0.0 : sum / static_cast<double>(slices.layers.size());
 }
 
 }  // namespace meadow::runtime

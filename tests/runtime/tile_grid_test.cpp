@@ -151,7 +151,8 @@ TEST(FarFieldSlices, DrawThePatchSideOnDenserAtTheRootThanAtTheTips) {
     ASSERT_EQ(s.layers.size(), 16u);
     EXPECT_FLOAT_EQ(s.spacing_m, 0.25f);
     EXPECT_NEAR(s.height_m, tallestBlade_m(patch), 0.2f);
-    const double coverage = meanCoverage(s);
+    double coverage = 0.0;
+    for (float c : s.bandCoverage) coverage += c / FarFieldSlices::kHeightBands;
     EXPECT_GT(coverage, 0.05);
     EXPECT_LT(coverage, 0.9);
     double bottom = 0.0, top = 0.0;
@@ -162,6 +163,12 @@ TEST(FarFieldSlices, DrawThePatchSideOnDenserAtTheRootThanAtTheTips) {
         top += cv::mean(channels[3].rowRange(24, 32))[0];
     }
     EXPECT_GT(bottom, 2.0 * top);  // blades taper and lean: fewer reach the top
+    // Band albedos lie between the root's and the tip's colours (times the hue variation and
+    // the root's occlusion), darker at the ground than at the top.
+    EXPECT_GT(s.bandAlbedo[0].g, scene.render.rootColor.g * scene.render.aoAtRoot * 0.7f);
+    EXPECT_LT(s.bandAlbedo[7].g, scene.render.tipColor.g * 1.3f);
+    EXPECT_LT(s.bandAlbedo[0].g, s.bandAlbedo[7].g);
+    EXPECT_GT(s.bandCoverage[0], s.bandCoverage[7]);
 }
 
 TEST(TiledSceneFile, TilingNeedsATerrainAndNoGrassMesh) {
