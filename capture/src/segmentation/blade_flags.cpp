@@ -129,11 +129,18 @@ void flagBlades(std::span<BladeContour> blades, const BladeCluster& cluster, cv:
                             "of the width; its edges and widths are unreliable");
         }
         const float turn = totalTurn_deg(mid);
-        if (turn > params.curlTurn_deg)
-            addFlag(blade, BladeFlag::CurlsSideways,
-                    "centre line turns " + fixed(turn, 0) + " deg (> " +
-                        fixed(params.curlTurn_deg, 0) +
-                        "): the blade curls or folds; the symmetric match may pair wrong points");
+        if (turn > params.curlTurn_deg) {
+            const float miss = quadraticBezierMiss_px(mid);
+            if (miss > params.curlMissShare * length)
+                addFlag(blade, BladeFlag::CurlsSideways,
+                        "centre line turns " + fixed(turn, 0) + " deg (> " +
+                            fixed(params.curlTurn_deg, 0) +
+                            ") and a quadratic spine misses it by " + fixed(miss, 1) + " px (" +
+                            fixed(100.0 * miss / length, 0) + " % of its length, > " +
+                            fixed(100.0 * params.curlMissShare, 0) +
+                            " %): the blade curls or folds; the symmetric match may pair wrong "
+                            "points");
+        }
         if (hasHoles && cv::countNonZero(blade.mask & holes(blade.maskBox_px())) > 0)
             addFlag(blade, BladeFlag::Overlapping,
                     "the blade borders a gap enclosed by blades: it crosses another blade");

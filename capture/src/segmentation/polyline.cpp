@@ -1,7 +1,9 @@
 // Points along an open polyline by arc length (polyline.h).
 #include "segmentation/polyline.h"
 
+#include <algorithm>
 #include <cmath>
+#include <limits>
 #include <opencv2/core.hpp>
 
 namespace meadow::capture::segmentation {
@@ -53,6 +55,55 @@ std::vector<cv::Point2f> resampledEvery(const std::vector<cv::Point2f>& line, fl
     const int count = static_cast<int>(std::floor(arc.back() / step_px)) + 1;
     return pointsAtArcLengths(line, arc, count,
                               [&](int k) { return step_px * static_cast<float>(k); });
+}
+
+float quadraticBezierMiss_px(const std::vector<cv::Point2f>& line) {
+    if (line.size() < 3) return 0.f;
+    std::vector<float> t(line.size(), 0.f);
+    for (std::size_t i = 1; i < line.size(); ++i)
+        t[i] = t[i - 1] + static_cast<float>(cv::norm(line[i] - line[i - 1]));
+    if (!(t.back() > 0.f)) return 0.f;
+    for (float& ti : t) ti /= t.back();
+    const cv::Point2f p0 = line.front(), p2 = line.back();
+    constexpr int kCurveSamples = 256;
+    std::vector<cv::Point2f> curve(kCurveSamples + 1);
+    float worst = 0.f;
+    // Least squares for p1 at the points' parameters, then each point's parameter moved to its
+    // nearest point of the curve (Hoschek's parameter correction), a few times: chord-length
+    // parameters alone misplace the points of a strongly bent line.
+    constexpr int kCorrections = 6;
+    for (int round = 0; round <= kCorrections; ++round) {
+        // B(t) = (1-t)^2 p0 + 2 t (1-t) p1 + t^2 p2 is linear in p1: the best p1 is closed form.
+        cv::Point2f numerator(0.f, 0.f);
+        float denominator = 0.f;
+        for (std::size_t i = 0; i < line.size(); ++i) {
+            const float b0 = (1 - t[i]) * (1 - t[i]), b1 = 2 * t[i] * (1 - t[i]), b2 = t[i] * t[i];
+            numerator += b1 * (line[i] - b0 * p0 - b2 * p2);
+            denominator += b1 * b1;
+        }
+        const cv::Point2f p1 = denominator > 0.f ? numerator / denominator : 0.5f * (p0 + p2);
+        for (int k = 0; k <= kCurveSamples; ++k) {
+            const float u = static_cast<float>(k) / kCurveSamples;
+            curve[static_cast<std::size_t>(k)] =
+                (1 - u) * (1 - u) * p0 + 2 * u * (1 - u) * p1 + u * u * p2;
+        }
+        worst = 0.f;
+        for (std::size_t i = 0; i < line.size(); ++i) {
+            float nearest = std::numeric_limits<float>::max();
+            for (int k = 0; k <= kCurveSamples; ++k) {
+                const float d =
+                    static_cast<float>(cv::norm(line[i] - curve[static_cast<std::size_t>(k)]));
+                if (d < nearest) {
+                    nearest = d;
+                    t[i] = static_cast<float>(k) / kCurveSamples;
+                }
+            }
+            worst = std::max(worst, nearest);
+        }
+        t.front() = 0.f;  // the ends stay on the end points
+        t.back() = 1.f;
+    }
+    return worst;
 }
 
 }  // namespace meadow::capture::segmentation

@@ -247,7 +247,11 @@ struct SegmenterParams {
     // noise-free frames and a Kinect's nominal noise). On clean edges a 2-3 px blade is
     // resolved, and the test would flag blades that match.
     float raggedEdges = 0.01f;
-    float curlTurn_deg = 150.0f;     // CurlsSideways when the centre line turns more
+    // CurlsSideways when the centre line turns more than curlTurn_deg and the quadratic spine
+    // that fits it best misses it by more than curlMissShare of its length: an arching leaf
+    // (rising, then drooping) turns as much but the blade model holds it.
+    float curlTurn_deg = 150.0f;
+    float curlMissShare = 0.08f;
     float overlapWidthRatio = 2.2f;  // Overlapping when this much wider than the median
     // Overlapping when a blade's contour dips between two tips by at least this share of the
     // cut threshold: too shallow to cut, deep enough for two blades that touch (clean leaf
