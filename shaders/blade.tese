@@ -11,6 +11,9 @@ uniform int uShapeOverride;       // -1: each archetype's own shape; else a BLAD
 uniform bool uDisplacement;       // 3D displacement along the normal (Sec. 6.2)
 uniform float uPixelSize_perM;    // world size of one pixel at 1 m distance (m/m)
 uniform float uMinWidth_px;       // width correction: cross-sections never project thinner
+#ifdef SHADOW_PASS
+uniform int uShadowCascade;       // which cascade of the shadow map is drawn
+#endif
 
 patch in uint tcBladeIndex;
 out vec3 teWorld_m;
@@ -109,7 +112,7 @@ void main() {
     // Not the index: a tiled scene's blades are emitted anew each frame, in any order.
     teBladeKey = floatBitsToUint(blade.v0_height.x) * 0x9e3779b1u ^ floatBitsToUint(blade.v0_height.z);
 #ifdef SHADOW_PASS
-    gl_Position = frame.lightClipFromWorld * vec4(p, 1.0);
+    gl_Position = frame.lightClipFromWorld[uShadowCascade] * vec4(p, 1.0);
 #else
     gl_Position = frame.clipFromWorld * vec4(p, 1.0);
 #endif

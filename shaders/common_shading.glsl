@@ -26,20 +26,29 @@ vec3 withAerialPerspective(vec3 linear, vec3 world, FrameGpu f) {
 }
 
 // The share of direct light that reaches a point (1 lit, 1 - strength in shadow), from the
-// shadow map with 2 x 2 percentage-closer filtering (hardware comparison, bilinear). Points
-// outside the map are lit.
+// nearest shadow cascade that holds it (cascade c is the c-th square of the map, left to right),
+// with 2 x 2 percentage-closer filtering (hardware comparison, bilinear). Points outside every
+// cascade are lit.
 layout(binding = SHADOW_TEXTURE_UNIT) uniform sampler2DShadow shadowMap;
 float shadowedLight(vec3 world, vec3 n, FrameGpu f) {
     float strength = f.zenith.w;
     if (strength <= 0.0) return 1.0;
-    vec4 q = f.lightClipFromWorld * vec4(world + 0.02 * n, 1.0);
-    vec3 p = q.xyz / q.w * 0.5 + 0.5;
-    if (any(lessThan(p, vec3(0.0))) || any(greaterThan(p, vec3(1.0)))) return 1.0;
     vec2 texel = 1.0 / vec2(textureSize(shadowMap, 0));
-    float lit = 0.0;
-    for (int i = 0; i < 4; ++i) {
-        vec2 o = (vec2(i & 1, i >> 1) - 0.5) * texel;
-        lit += texture(shadowMap, vec3(p.xy + o, p.z - 0.0015));
+    // Two texels of margin (in a cascade's own units) so the filter never reads a neighbour.
+    float margin = 2.0 * texel.x * float(SHADOW_CASCADES);
+    for (int c = 0; c < SHADOW_CASCADES; ++c) {
+        vec4 q = f.lightClipFromWorld[c] * vec4(world + 0.02 * n, 1.0);
+        vec3 p = q.xyz / q.w * 0.5 + 0.5;
+        if (any(lessThan(p, vec3(margin, margin, 0.0))) ||
+            any(greaterThan(p, vec3(1.0 - margin, 1.0 - margin, 1.0))))
+            continue;
+        vec2 atlas = vec2((p.x + float(c)) / float(SHADOW_CASCADES), p.y);
+        float lit = 0.0;
+        for (int i = 0; i < 4; ++i) {
+            vec2 o = (vec2(i & 1, i >> 1) - 0.5) * texel;
+            lit += texture(shadowMap, vec3(atlas + o, p.z - 0.0015));
+        }
+        return 1.0 - strength * (1.0 - 0.25 * lit);
     }
-    return 1.0 - strength * (1.0 - 0.25 * lit);
+    return 1.0;
 }

@@ -6,6 +6,9 @@ layout(location = 1) in vec3 aNormal;
 layout(std140, binding = FRAME_UBO_BINDING) uniform Frame { FrameGpu frame; };
 
 uniform vec3 uOffset_m;  // where a moving collider's mesh is now; 0 for the scene's meshes
+#ifdef SHADOW_PASS
+uniform int uShadowCascade;  // which cascade of the shadow map is drawn
+#endif
 
 out vec3 vNormal;
 out vec3 vWorld_m;
@@ -17,7 +20,7 @@ void main() {
     vNormal = aNormal;
     vWorld_m = aPosition_m + uOffset_m;
 #ifdef SHADOW_PASS
-    gl_Position = frame.lightClipFromWorld * vec4(vWorld_m, 1.0);
+    gl_Position = frame.lightClipFromWorld[uShadowCascade] * vec4(vWorld_m, 1.0);
 #else
     gl_Position = frame.clipFromWorld * vec4(vWorld_m, 1.0);
 #endif

@@ -253,7 +253,7 @@ void DrawPass::renderShadowMap(const SceneGpu& gpu, const SceneDescription& scen
     const int size = scene.shadows.mapSize_px;
     if (shadowSize_ != size) {
         shadowMap_ = gl::Texture::create(GL_TEXTURE_2D);
-        glTextureStorage2D(shadowMap_.id(), 1, GL_DEPTH_COMPONENT32F, size, size);
+        glTextureStorage2D(shadowMap_.id(), 1, GL_DEPTH_COMPONENT32F, size * SHADOW_CASCADES, size);
         glTextureParameteri(shadowMap_.id(), GL_TEXTURE_MIN_FILTER, GL_LINEAR);
         glTextureParameteri(shadowMap_.id(), GL_TEXTURE_MAG_FILTER, GL_LINEAR);
         glTextureParameteri(shadowMap_.id(), GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
@@ -270,30 +270,35 @@ void DrawPass::renderShadowMap(const SceneGpu& gpu, const SceneDescription& scen
     }
     glBindTextureUnit(SHADOW_TEXTURE_UNIT, 0);  // not sampled while it is drawn into
     glBindFramebuffer(GL_FRAMEBUFFER, shadowTarget_.id());
-    glViewport(0, 0, size, size);
     const float far = 1.f;
     glClearNamedFramebufferfv(shadowTarget_.id(), GL_DEPTH, 0, &far);
     glEnable(GL_DEPTH_TEST);
     glDepthMask(GL_TRUE);
     glDepthFunc(GL_LESS);
     glDisable(GL_MULTISAMPLE);
-    opaqueShadowProgram_->use();
-    for (const GpuMesh& m : gpu.meshes) {
-        if (!m.visible) continue;
-        opaqueShadowProgram_->set("uOffset_m", m.offset_m);
-        glBindVertexArray(m.vertexArray.id());
-        glDrawElements(GL_TRIANGLES, m.indexCount, GL_UNSIGNED_INT, nullptr);
-    }
     const RenderSettings& r = scene.render;
-    bladeShadowProgram_->use();
-    // A shadow needs the blade's shape, not its detail.
-    bladeShadowProgram_->set("uMaxTessLevel", std::min(r.maxTessLevel, 4.f));
-    bladeShadowProgram_->set("uAcrossSegments", 1);
-    bladeShadowProgram_->set("uShapeOverride", r.shapeOverride);
-    bladeShadowProgram_->set("uDisplacement", 0);
-    bladeShadowProgram_->set("uPixelSize_perM", 0.f);
-    bladeShadowProgram_->set("uMinWidth_px", 0.f);
-    drawIndirectBlades(gpu);
+    // Cascade c is the c-th size x size square of the map.
+    for (int cascade = 0; cascade < SHADOW_CASCADES; ++cascade) {
+        glViewport(cascade * size, 0, size, size);
+        opaqueShadowProgram_->use();
+        opaqueShadowProgram_->set("uShadowCascade", cascade);
+        for (const GpuMesh& m : gpu.meshes) {
+            if (!m.visible) continue;
+            opaqueShadowProgram_->set("uOffset_m", m.offset_m);
+            glBindVertexArray(m.vertexArray.id());
+            glDrawElements(GL_TRIANGLES, m.indexCount, GL_UNSIGNED_INT, nullptr);
+        }
+        bladeShadowProgram_->use();
+        bladeShadowProgram_->set("uShadowCascade", cascade);
+        // A shadow needs the blade's shape, not its detail.
+        bladeShadowProgram_->set("uMaxTessLevel", std::min(r.maxTessLevel, 4.f));
+        bladeShadowProgram_->set("uAcrossSegments", 1);
+        bladeShadowProgram_->set("uShapeOverride", r.shapeOverride);
+        bladeShadowProgram_->set("uDisplacement", 0);
+        bladeShadowProgram_->set("uPixelSize_perM", 0.f);
+        bladeShadowProgram_->set("uMinWidth_px", 0.f);
+        drawIndirectBlades(gpu);
+    }
     glEnable(GL_MULTISAMPLE);
     glBindFramebuffer(GL_FRAMEBUFFER, msaaTarget_.id());
     glViewport(0, 0, width_, height_);
@@ -304,7 +309,8 @@ std::size_t DrawPass::targetBytes() const {
     const std::size_t pixels = static_cast<std::size_t>(width_) * static_cast<std::size_t>(height_);
     // Multisampled RGBA8 + depth32F, resolved RGBA8 + depth32F, the shadow map's depth32F.
     return pixels * static_cast<std::size_t>(samples_) * 8 + pixels * 8 +
-           static_cast<std::size_t>(shadowSize_) * static_cast<std::size_t>(shadowSize_) * 4;
+           static_cast<std::size_t>(shadowSize_) * static_cast<std::size_t>(shadowSize_) * 4 *
+               SHADOW_CASCADES;
 }
 
 void DrawPass::resolveColor() const {

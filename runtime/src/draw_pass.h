@@ -27,7 +27,7 @@ public:
     // Opaque meshes into depth only; the single-sample copy feeds occlusion culling.
     void depthPrepass(const SceneGpu& gpu) const;
     void resolveDepth() const;
-    // The shadow map from the frame's lightClipFromWorld: opaque meshes and the blades of the
+    // The shadow cascades from the frame's lightClipFromWorld: opaque meshes and the blades of the
     // indirect draw (call after the culling or emit pass). Binds it for the shading passes.
     void renderShadowMap(const SceneGpu& gpu, const SceneDescription& scene);
     // Opaque meshes shaded where the pre-pass left their depth; the terrain with its far field.

@@ -23,9 +23,10 @@ glm::mat4 viewFromWorldOf(const CameraPose& pose) {
 }
 
 glm::mat4 lightClipFromWorldOf(const CameraPose& pose, const LightDescription& light,
-                               const ShadowDescription& shadows) {
+                               const ShadowDescription& shadows, int cascade) {
     const glm::vec3 forward = glm::normalize(pose.target_m - pose.position_m);
-    const float radius = 0.5f * shadows.distance_m;
+    const float radius = 0.5f * shadows.distance_m *
+                         (cascade == 0 ? 1.f : static_cast<float>(SHADOW_FAR_CASCADE_SCALE));
     const glm::vec3 centre = pose.position_m + forward * radius;
     const glm::vec3 toLight = glm::normalize(light.direction);
     const glm::vec3 up =
@@ -60,7 +61,8 @@ gpu::FrameGpu frameGpuOf(const SceneDescription& scene, const CameraPose& pose, 
     frame.zenith = glm::vec4(linearOf(light.zenithColor.value_or(light.skyColor)),
                              scene.shadows.enabled ? scene.shadows.strength : 0.f);
     if (scene.shadows.enabled)
-        frame.lightClipFromWorld = lightClipFromWorldOf(pose, light, scene.shadows);
+        for (int c = 0; c < SHADOW_CASCADES; ++c)
+            frame.lightClipFromWorld[c] = lightClipFromWorldOf(pose, light, scene.shadows, c);
     return frame;
 }
 

@@ -12,11 +12,12 @@ namespace meadow::runtime {
 
 glm::mat4 viewFromWorldOf(const CameraPose& pose);
 
-// The shadow map's projection: an orthographic box along the light over the part of the view
-// within the shadow distance, its centre snapped to whole shadow-map texels (in light space) so
-// the shadows do not shimmer as the camera moves.
+// A shadow cascade's projection: an orthographic box along the light over the part of the view
+// within the shadow distance (the far cascade: SHADOW_FAR_CASCADE_SCALE times it), its centre
+// snapped to whole shadow-map texels (in light space) so the shadows do not shimmer as the
+// camera moves.
 glm::mat4 lightClipFromWorldOf(const CameraPose& pose, const LightDescription& light,
-                               const ShadowDescription& shadows);
+                               const ShadowDescription& shadows, int cascade);
 
 gpu::FrameGpu frameGpuOf(const SceneDescription& scene, const CameraPose& pose, float time_s,
                          int width_px, int height_px);

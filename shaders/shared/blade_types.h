@@ -31,6 +31,11 @@ using mat4 = glm::mat4;
 #define FAR_FIELD_TEXTURE_UNIT 5
 #define SHADOW_TEXTURE_UNIT 6
 
+// Shadow cascades: the near one over shadows.distance_m of the view, the far one over four
+// times that; side by side in one shadow-map texture.
+#define SHADOW_CASCADES 2
+#define SHADOW_FAR_CASCADE_SCALE 4.0
+
 // Blades per indirect draw command (the draw pass splits the culling output into such chunks).
 #define BLADE_DRAW_CHUNK 512
 
@@ -112,9 +117,9 @@ struct FrameGpu {
     vec4 viewport_px;          // xy framebuffer size (px), z near (m), w far (m)
     vec4 wind;                 // xyz wind direction (unit, world), w wave amplitude (m/s)
     mat4 worldFromClip;        // inverse of clipFromWorld: the sky's view rays
-    mat4 lightClipFromWorld;   // the shadow map's projection (render.shadows)
-    vec4 horizon;              // xyz linear sky colour at the horizon, w fog distance (m), 0 none
-    vec4 zenith;               // xyz linear sky colour straight up, w shadow strength (0: none)
+    mat4 lightClipFromWorld[SHADOW_CASCADES];  // each shadow cascade's projection (shadows)
+    vec4 horizon;  // xyz linear sky colour at the horizon, w fog distance (m), 0 none
+    vec4 zenith;   // xyz linear sky colour straight up, w shadow strength (0: none)
 };
 
 #ifdef __cplusplus
@@ -123,7 +128,7 @@ static_assert(sizeof(BladeRestGpu) == 32);
 static_assert(sizeof(ArchetypeGpu) == 96);
 static_assert(sizeof(DrawCommandGpu) == 16 && sizeof(CullStatsGpu) == 16);
 static_assert(sizeof(PatchGpu) == 48 && sizeof(ColliderGpu) == 16);
-static_assert(sizeof(FrameGpu) == 352 && offsetof(FrameGpu, cameraPosition_time) == 128 &&
-              offsetof(FrameGpu, horizon) == 320);
+static_assert(sizeof(FrameGpu) == 416 && offsetof(FrameGpu, cameraPosition_time) == 128 &&
+              offsetof(FrameGpu, horizon) == 384);
 }  // namespace meadow::runtime::gpu
 #endif

@@ -291,8 +291,13 @@ TEST(TiledFieldImageGLTest, TheTransitionBandHidesTheHandOverToTheFarField) {
                                    << " (grey levels a pixel a frame)";
 }
 
-TEST(TiledFieldImageGLTest, ShadowsDarkenTheGroundWhereAPropStands) {
-    const auto dir = test::freshTestDirectory("tiled_shadows");
+// The box's shadow from the near cascade (shadows over 12 m of the view) and from the far one
+// (over 3 m: the near cascade's box then ends above the ground, the far one holds it).
+class TiledShadowImageGLTest : public testing::TestWithParam<float> {};
+
+TEST_P(TiledShadowImageGLTest, ShadowsDarkenTheGroundWhereAPropStands) {
+    const auto dir =
+        test::freshTestDirectory("tiled_shadows_" + std::to_string(static_cast<int>(GetParam())));
     // A 1 m box at the origin; the light comes from +x, 45 degrees up: its shadow falls on x <
     // -0.5.
     test::writeGltf(dir / "box.gltf",
@@ -312,7 +317,7 @@ TEST(TiledFieldImageGLTest, ShadowsDarkenTheGroundWhereAPropStands) {
              {"terrain", {{"relief_m", 0}}},
              {"blades", {{"density_per_m2", 40}}},
              {"light", {{"direction", {1, 1, 0}}}},
-             {"shadows", {{"enabled", shadows}, {"map_size_px", 512}, {"distance_m", 12}}},
+             {"shadows", {{"enabled", shadows}, {"map_size_px", 512}, {"distance_m", GetParam()}}},
              {"camera", {{"position_m", {0, 9, 0.01}}, {"target_m", {0, 0, 0}}}},
              {"render", {{"size_px", {160, 160}}}}});
         return loadSceneDescription(test::writeScene(dir, j));
@@ -337,6 +342,8 @@ TEST(TiledFieldImageGLTest, ShadowsDarkenTheGroundWhereAPropStands) {
     EXPECT_LT(meanGrey(on, -1.4f, -0.7f), 0.8 * meanGrey(off, -1.4f, -0.7f));
     EXPECT_GT(meanGrey(on, 2.f, 3.f), 0.85 * meanGrey(off, 2.f, 3.f));
 }
+
+INSTANTIATE_TEST_SUITE_P(NearAndFarCascade, TiledShadowImageGLTest, testing::Values(12.f, 3.f));
 
 TEST(TiledFieldImageGLTest, TheBundledPrairiePlantsOverAHundredMillionBladesInUnderAGigabyte) {
     SceneDescription prairie =
