@@ -9,7 +9,7 @@
 // The command and the stats are reset by the host (glClearNamedBufferSubData + glMemoryBarrier)
 // before this dispatch: barrier() orders nothing between workgroups.
 // Prepended by the loader: shared/blade_types.h, shared/physics_params.h, shared/cull_params.h,
-// common_dispatch.glsl, common_physics.glsl, common_culling.glsl.
+// common_dispatch.glsl, common_physics.glsl, common_culling.glsl, common_culling_depth.glsl.
 layout(local_size_x = BLADE_WORKGROUP_SIZE) in;
 
 layout(std140, binding = CULL_UBO_BINDING) uniform CullBlock { CullParamsGpu params; };
@@ -20,23 +20,10 @@ layout(std430, binding = VISIBLE_INDEX_SSBO_BINDING) restrict writeonly buffer V
 };
 layout(std430, binding = DRAW_COMMAND_SSBO_BINDING) restrict buffer Command { DrawCommandGpu command; };
 layout(std430, binding = CULL_STATS_SSBO_BINDING) restrict buffer Stats { CullStatsGpu stats; };
-layout(binding = CULL_DEPTH_TEXTURE_UNIT) uniform sampler2D opaqueDepth;
 
 shared uint groupCulled[4];  // orientation, frustum, distance, occlusion
 shared uint groupVisible;
 shared uint groupBase;
-
-uint statSlot(uint test) {
-    return test == CULL_TEST_ORIENTATION ? 0u : test == CULL_TEST_FRUSTUM ? 1u
-         : test == CULL_TEST_DISTANCE ? 2u : 3u;
-}
-
-bool occluded(vec4 q) {
-    if (!clipPointInViewport(q)) return false;
-    float sceneDepth = texelFetch(opaqueDepth, depthTexel(q, params.counts.zw), 0).r;
-    return pointOccluded(q, sceneDepth, params.depthRange_m.x, params.depthRange_m.y,
-                         params.depthRange_m.z);
-}
 
 void main() {
     uint lane = gl_LocalInvocationID.x;
@@ -64,20 +51,14 @@ void main() {
         if (id < count) {
             BladeGpu blade = blades[first + id];
             uint culledBy = cullBladeGeometric(blade, id, params);
-            if (culledBy == 0u && (params.counts.y & CULL_TEST_OCCLUSION) != 0u) {
-                vec3 v0 = vec3(blade.v0_height);
-                vec3 v2 = vec3(blade.v2_stiffness);
-                vec3 m = bezierMidpoint(v0, vec3(blade.v1_width), v2);
-                if (occluded(params.clipFromWorld * vec4(v0, 1.0f)) &&
-                    occluded(params.clipFromWorld * vec4(m, 1.0f)) &&
-                    occluded(params.clipFromWorld * vec4(v2, 1.0f)))
-                    culledBy = CULL_TEST_OCCLUSION;
-            }
+            if (culledBy == 0u && (params.counts.y & CULL_TEST_OCCLUSION) != 0u &&
+                bladeOccluded(blade, params))
+                culledBy = CULL_TEST_OCCLUSION;
             if (culledBy == 0u) {
                 visible = true;
                 slot = atomicAdd(groupVisible, 1u);
             } else {
-                atomicAdd(groupCulled[statSlot(culledBy)], 1u);
+                atomicAdd(groupCulled[cullStatSlot(culledBy)], 1u);
             }
         }
         barrier();

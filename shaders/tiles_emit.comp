@@ -6,7 +6,7 @@
 // wind (settledBlade). One workgroup per tile and BLADE_WORKGROUP_SIZE patch blades.
 // Prepended: shared/blade_types.h, shared/physics_params.h, shared/cull_params.h,
 // shared/tiling_types.h, common_dispatch.glsl, common_physics.glsl, common_culling.glsl,
-// common_tiles.glsl.
+// common_culling_depth.glsl, common_tiles.glsl.
 layout(local_size_x = BLADE_WORKGROUP_SIZE) in;
 
 layout(std140, binding = PHYSICS_UBO_BINDING) uniform PhysicsBlock { PhysicsParamsGpu physics; };
@@ -26,17 +26,10 @@ layout(std430, binding = VISIBLE_INDEX_SSBO_BINDING) restrict writeonly buffer V
 };
 layout(std430, binding = DRAW_COMMAND_SSBO_BINDING) restrict buffer Command { DrawCommandGpu command; };
 layout(std430, binding = CULL_STATS_SSBO_BINDING) restrict buffer Stats { CullStatsGpu stats; };
-layout(binding = CULL_DEPTH_TEXTURE_UNIT) uniform sampler2D opaqueDepth;
 
 shared uint groupCulled[4];  // orientation, frustum, thinned, occlusion
 shared uint groupVisible;
 shared uint groupBase;
-
-bool occluded(vec4 q) {
-    if (!clipPointInViewport(q)) return false;
-    float sceneDepth = texelFetch(opaqueDepth, depthTexel(q, cull.counts.zw), 0).r;
-    return pointOccluded(q, sceneDepth, cull.depthRange_m.x, cull.depthRange_m.y, cull.depthRange_m.z);
-}
 
 void main() {
     uint lane = gl_LocalInvocationID.x;
@@ -70,21 +63,14 @@ void main() {
         blade.v1_width.w *= clamp((limit - b.threshold) / max(0.15 * limit, 1e-4), 0.0, 1.0);
         if (tiling.counts.w != 0u) {
             culledBy = cullBladeGeometric(blade, k, cull);
-            if (culledBy == 0u && (cull.counts.y & CULL_TEST_OCCLUSION) != 0u) {
-                vec3 v2 = vec3(blade.v2_stiffness);
-                vec3 m = bezierMidpoint(v0, vec3(blade.v1_width), v2);
-                if (occluded(cull.clipFromWorld * vec4(v0, 1.0)) &&
-                    occluded(cull.clipFromWorld * vec4(m, 1.0)) &&
-                    occluded(cull.clipFromWorld * vec4(v2, 1.0)))
-                    culledBy = CULL_TEST_OCCLUSION;
-            }
+            if (culledBy == 0u && (cull.counts.y & CULL_TEST_OCCLUSION) != 0u &&
+                bladeOccluded(blade, cull))
+                culledBy = CULL_TEST_OCCLUSION;
         }
     }
     uint slot = 0u;
     if (culledBy == 0u) slot = atomicAdd(groupVisible, 1u);
-    else atomicAdd(groupCulled[culledBy == CULL_TEST_ORIENTATION ? 0u
-                               : culledBy == CULL_TEST_FRUSTUM ? 1u
-                               : culledBy == CULL_TEST_DISTANCE ? 2u : 3u], 1u);
+    else atomicAdd(groupCulled[cullStatSlot(culledBy)], 1u);
     barrier();
     if (lane == 0u) groupBase = atomicAdd(command.vertexCount, groupVisible);
     barrier();

@@ -11,11 +11,12 @@ namespace meadow::runtime {
 
 namespace {
 gl::ProgramSource cullProgramSource() {
-    return {.label = "blade culling",
-            .stages = {{GL_COMPUTE_SHADER, "cull.comp"}},
-            .commonFiles = {"shared/physics_params.h", "shared/cull_params.h",
-                            "common_dispatch.glsl", "common_physics.glsl", "common_culling.glsl"},
-            .defines = {}};
+    return {
+        .label = "blade culling",
+        .stages = {{GL_COMPUTE_SHADER, "cull.comp"}},
+        .commonFiles = {"shared/physics_params.h", "shared/cull_params.h", "common_dispatch.glsl",
+                        "common_physics.glsl", "common_culling.glsl", "common_culling_depth.glsl"},
+        .defines = {}};
 }
 }  // namespace
 

@@ -221,13 +221,11 @@ void DrawPass::drawBlades(const SceneGpu& gpu, const SceneDescription& scene,
     bladeProgram_.set("uTranslucency", r.translucency);
     bladeProgram_.set("uAoAtRoot", r.aoAtRoot);
     if (wireframe_) glPolygonMode(GL_FRONT_AND_BACK, GL_LINE);
-    drawIndirectBlades(gpu);
+    drawIndirectBlades(gpu, bladeProgram_);
     if (wireframe_) glPolygonMode(GL_FRONT_AND_BACK, GL_FILL);
 }
 
-void DrawPass::drawIndirectBlades(const SceneGpu& gpu) {
-    GLint program = 0;  // the caller's blade program, set up
-    glGetIntegerv(GL_CURRENT_PROGRAM, &program);
+void DrawPass::drawIndirectBlades(const SceneGpu& gpu, const gl::ShaderProgram& program) {
     glBindVertexArray(emptyVertexArray_.id());
     glPatchParameteri(GL_PATCH_VERTICES, 1);
     glMemoryBarrier(GL_COMMAND_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);
@@ -243,7 +241,7 @@ void DrawPass::drawIndirectBlades(const SceneGpu& gpu) {
     chunkProgram_.set("uChunkCount", static_cast<unsigned>(chunkCount));
     gl::dispatchGroups((chunkCount + BLADE_WORKGROUP_SIZE - 1) / BLADE_WORKGROUP_SIZE);
     glMemoryBarrier(GL_COMMAND_BARRIER_BIT);
-    glUseProgram(static_cast<GLuint>(program));
+    program.use();
     glBindBuffer(GL_DRAW_INDIRECT_BUFFER, chunks_.id());
     glMultiDrawArraysIndirect(GL_PATCHES, nullptr, static_cast<GLsizei>(chunkCount), 0);
     glBindBuffer(GL_DRAW_INDIRECT_BUFFER, 0);
@@ -277,6 +275,15 @@ void DrawPass::renderShadowMap(const SceneGpu& gpu, const SceneDescription& scen
     glDepthFunc(GL_LESS);
     glDisable(GL_MULTISAMPLE);
     const RenderSettings& r = scene.render;
+    const gl::ShaderProgram& blades = *bladeShadowProgram_;
+    blades.use();
+    // A shadow needs the blade's shape, not its detail.
+    blades.set("uMaxTessLevel", std::min(r.maxTessLevel, 4.f));
+    blades.set("uAcrossSegments", 1);
+    blades.set("uShapeOverride", r.shapeOverride);
+    blades.set("uDisplacement", 0);
+    blades.set("uPixelSize_perM", 0.f);
+    blades.set("uMinWidth_px", 0.f);
     // Cascade c is the c-th size x size square of the map.
     for (int cascade = 0; cascade < SHADOW_CASCADES; ++cascade) {
         glViewport(cascade * size, 0, size, size);
@@ -288,16 +295,9 @@ void DrawPass::renderShadowMap(const SceneGpu& gpu, const SceneDescription& scen
             glBindVertexArray(m.vertexArray.id());
             glDrawElements(GL_TRIANGLES, m.indexCount, GL_UNSIGNED_INT, nullptr);
         }
-        bladeShadowProgram_->use();
-        bladeShadowProgram_->set("uShadowCascade", cascade);
-        // A shadow needs the blade's shape, not its detail.
-        bladeShadowProgram_->set("uMaxTessLevel", std::min(r.maxTessLevel, 4.f));
-        bladeShadowProgram_->set("uAcrossSegments", 1);
-        bladeShadowProgram_->set("uShapeOverride", r.shapeOverride);
-        bladeShadowProgram_->set("uDisplacement", 0);
-        bladeShadowProgram_->set("uPixelSize_perM", 0.f);
-        bladeShadowProgram_->set("uMinWidth_px", 0.f);
-        drawIndirectBlades(gpu);
+        blades.use();
+        blades.set("uShadowCascade", cascade);
+        drawIndirectBlades(gpu, blades);
     }
     glEnable(GL_MULTISAMPLE);
     glBindFramebuffer(GL_FRAMEBUFFER, msaaTarget_.id());

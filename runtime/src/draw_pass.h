@@ -53,7 +53,8 @@ public:
     [[nodiscard]] int height_px() const { return height_; }
 
 private:
-    void drawIndirectBlades(const SceneGpu& gpu);
+    // The blades of the indirect draw command with `program` (its uniforms set by the caller).
+    void drawIndirectBlades(const SceneGpu& gpu, const gl::ShaderProgram& program);
     const gl::ShaderProgram& terrainProgram();
 
     int width_, height_, samples_;

@@ -92,6 +92,10 @@ struct Renderer::Impl {
     // The same for any camera and clock; stats.frame is left 0.
     FrameStats recordFrameAt(const CameraPose& pose, float time_s, float deltaTime_s,
                              StageTimers& frameTimers);
+    // Stored blades, or a tiled scene's patch on every tile (Renderer::bladeCount).
+    [[nodiscard]] std::uint64_t plantedBlades() const {
+        return tiled ? tiled->instancedBlades() : gpu.bladeCount;
+    }
     // The counts of the frame just recorded (waits for the GPU).
     void readCounts(FrameStats& stats) const;
 };
@@ -102,9 +106,7 @@ Renderer::Renderer(GlContext& context, const SceneDescription& scene, SceneBlade
     : impl_(std::make_unique<Impl>(context, scene, std::move(blades))) {}
 Renderer::~Renderer() = default;
 
-std::size_t Renderer::bladeCount() const {
-    return impl_->tiled ? impl_->tiled->instancedBlades() : impl_->gpu.bladeCount;
-}
+std::size_t Renderer::bladeCount() const { return impl_->plantedBlades(); }
 std::size_t Renderer::gpuMemoryBytes() const {
     const Impl& im = *impl_;
     const SceneGpu& g = im.gpu;
@@ -123,7 +125,7 @@ std::size_t Renderer::gpuMemoryBytes() const {
 
 std::string Renderer::summary() const {
     if (const TiledField* t = impl_->tiled.get())
-        return std::to_string(t->instancedBlades()) + " blades on " +
+        return std::to_string(impl_->plantedBlades()) + " blades on " +
                std::to_string(static_cast<std::size_t>(t->grid().tilesX()) *
                               static_cast<std::size_t>(t->grid().tilesZ())) +
                " tiles of one " + std::to_string(t->patchBlades()) + "-blade patch";
@@ -196,7 +198,7 @@ FrameStats Renderer::Impl::recordFrameAt(const CameraPose& pose, float time_s, f
 
     FrameStats st;
     st.time_s = time_s;
-    st.bladesTotal = tiled ? tiled->instancedBlades() : gpu.bladeCount;
+    st.bladesTotal = plantedBlades();
     if (tiled) {
         st.tilesDrawn = tiled->tilesDrawn();
         st.tilesSimulated = tiled->pool().activeCount();

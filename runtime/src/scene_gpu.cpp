@@ -2,6 +2,7 @@
 
 #include <numeric>
 
+#include "gl/buffers.h"
 #include "ground_maps.h"
 #include "meadow/runtime/error.h"
 #include "patches.h"
@@ -11,14 +12,7 @@
 namespace meadow::runtime {
 namespace {
 
-template <class T>
-gl::Buffer bufferOf(const std::vector<T>& data, GLbitfield flags = GL_DYNAMIC_STORAGE_BIT) {
-    gl::Buffer b = gl::Buffer::create();
-    glNamedBufferStorage(b.id(),
-                         static_cast<GLsizeiptr>(std::max<std::size_t>(data.size(), 1) * sizeof(T)),
-                         data.empty() ? nullptr : data.data(), flags);
-    return b;
-}
+using gl::bufferOf;
 
 GpuMesh uploadMesh(const TriangleMesh& mesh, glm::vec3 albedo) {
     std::vector<float> interleaved;
@@ -113,8 +107,8 @@ SceneGpu uploadScene(const SceneBlades& b, const SceneDescription& scene) {
     if (scene.tiling) {
         // Filled each frame by the tiles' emit pass.
         g.bladeCount = tiledDrawCapacity(*scene.tiling);
-        g.blades = bufferOf(std::vector<gpu::BladeGpu>(g.bladeCount));
-        g.rests = bufferOf(std::vector<gpu::BladeRestGpu>(g.bladeCount));
+        g.blades = gl::bufferFor<gpu::BladeGpu>(g.bladeCount);
+        g.rests = gl::bufferFor<gpu::BladeRestGpu>(g.bladeCount);
     } else {
         g.bladeCount = static_cast<std::uint32_t>(b.blades.size());
         g.blades = bufferOf(b.blades);

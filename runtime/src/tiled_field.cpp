@@ -6,6 +6,7 @@
 
 #include "culling_reference.h"
 #include "culling_scene_pass.h"
+#include "gl/buffers.h"
 #include "gl/dispatch.h"
 #include "ground_maps.h"
 #include "meadow/runtime/error.h"
@@ -27,21 +28,12 @@ gl::ProgramSource tileProgramSource(const char* label, const char* file, bool cu
     if (culling) common.push_back("shared/cull_params.h");
     common.insert(common.end(),
                   {"shared/tiling_types.h", "common_dispatch.glsl", "common_physics.glsl"});
-    if (culling) common.push_back("common_culling.glsl");
+    if (culling) common.insert(common.end(), {"common_culling.glsl", "common_culling_depth.glsl"});
     common.push_back("common_tiles.glsl");
     return {.label = label,
             .stages = {{GL_COMPUTE_SHADER, file}},
             .commonFiles = common,
             .defines = {}};
-}
-
-template <class T>
-gl::Buffer storage(std::size_t count, const T* data = nullptr) {
-    gl::Buffer b = gl::Buffer::create();
-    glNamedBufferStorage(b.id(),
-                         static_cast<GLsizeiptr>(std::max<std::size_t>(count, 1) * sizeof(T)), data,
-                         GL_DYNAMIC_STORAGE_BIT);
-    return b;
 }
 
 // The scene's density map resampled over the terrain's rectangle (each map keeps its own
@@ -99,13 +91,13 @@ TiledField::TiledField(GlContext& context, const SceneDescription& scene, const 
       emitProgram_(tileProgramSource("tile blades", "tiles_emit.comp", true)),
       activateProgram_(tileProgramSource("tile activation", "tile_activate.comp", false)),
       physics_(context),
-      instances_(storage(patch_.size(), patch_.data())),
+      instances_(gl::bufferFor(patch_.size(), patch_.data())),
       // One slot more than the pool: settledTile()'s scratch.
-      poolBlades_(storage<gpu::BladeGpu>((pool_.capacity() + 1) * patch_.size())),
-      poolRests_(storage<gpu::BladeRestGpu>((pool_.capacity() + 1) * patch_.size())),
-      tilingUbo_(storage<gpu::TilingParamsGpu>(1)),
-      physicsUbo_(storage<gpu::PhysicsParamsGpu>(1)),
-      cullUbo_(storage<gpu::CullParamsGpu>(1)),
+      poolBlades_(gl::bufferFor<gpu::BladeGpu>((pool_.capacity() + 1) * patch_.size())),
+      poolRests_(gl::bufferFor<gpu::BladeRestGpu>((pool_.capacity() + 1) * patch_.size())),
+      tilingUbo_(gl::bufferFor<gpu::TilingParamsGpu>(1)),
+      physicsUbo_(gl::bufferFor<gpu::PhysicsParamsGpu>(1)),
+      cullUbo_(gl::bufferFor<gpu::CullParamsGpu>(1)),
       height_(floatTexture(field.height_m)),
       drawCapacity_(tiledDrawCapacity(*scene.tiling)) {
     const cv::Mat density = densityOverTerrain(scene);
@@ -163,7 +155,7 @@ std::size_t TiledField::gpuBytes() const {
 void TiledField::uploadTiles(const std::vector<gpu::TileDrawGpu>& tiles) {
     if (tiles.size() > tileCapacity_) {
         tileCapacity_ = std::max(tiles.size(), tileCapacity_ * 2);
-        tiles_ = storage<gpu::TileDrawGpu>(tileCapacity_);
+        tiles_ = gl::bufferFor<gpu::TileDrawGpu>(tileCapacity_);
     }
     // The previous dispatch may still read the list.
     glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
@@ -173,8 +165,7 @@ void TiledField::uploadTiles(const std::vector<gpu::TileDrawGpu>& tiles) {
                              tiles.data());
 }
 
-void TiledField::uploadParams(const PassInputs& in, std::uint32_t tileCount, float dt_s,
-                              float time_s) {
+void TiledField::uploadParams(const PassInputs& in, std::uint32_t tileCount) {
     const TilingDescription& t = *scene_.tiling;
     const TerrainDescription& terrain = *scene_.terrain;
     gpu::TilingParamsGpu p{};
@@ -182,7 +173,8 @@ void TiledField::uploadParams(const PassInputs& in, std::uint32_t tileCount, flo
     p.terrain = glm::vec4(terrain.minXZ_m, terrain.maxXZ_m - terrain.minXZ_m);
     p.counts = glm::uvec4(tileCount, static_cast<std::uint32_t>(patch_.size()), drawCapacity_, 1u);
     const gpu::PhysicsParamsGpu physics =
-        packPhysicsParams(physicsSettingsOf(scene_, in.frame), dt_s, time_s, 0u, 0u);
+        // The settled pose has no time step; the wind is this frame's.
+        packPhysicsParams(physicsSettingsOf(scene_, in.frame), 0.f, in.time_s, 0u, 0u);
     glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
     glNamedBufferSubData(tilingUbo_.id(), 0, sizeof p, &p);
     glNamedBufferSubData(physicsUbo_.id(), 0, sizeof physics, &physics);
@@ -199,15 +191,13 @@ void TiledField::bindShared() const {
     glBindTextureUnit(TERRAIN_DENSITY_TEXTURE_UNIT, density_.id());
 }
 
-void TiledField::activate(const std::vector<std::pair<TileKey, std::uint32_t>>& tiles) {
+void TiledField::activate(const PassInputs& in,
+                          const std::vector<std::pair<TileKey, std::uint32_t>>& tiles) {
     if (tiles.empty()) return;
     std::vector<gpu::TileDrawGpu> list;
     for (const auto& [tile, slot] : tiles) list.push_back({glm::uvec4(tile.x, tile.z, slot, 0u)});
     uploadTiles(list);
-    gpu::TilingParamsGpu p{};
-    glGetNamedBufferSubData(tilingUbo_.id(), 0, sizeof p, &p);
-    p.counts.x = static_cast<std::uint32_t>(list.size());
-    glNamedBufferSubData(tilingUbo_.id(), 0, sizeof p, &p);
+    uploadParams(in, static_cast<std::uint32_t>(list.size()));
     bindShared();
     activateProgram_.use();
     const auto blades = static_cast<std::uint32_t>(list.size() * patch_.size());
@@ -226,8 +216,7 @@ void TiledField::simulate(const PassInputs& in) {
     for (const CollisionSphere& s : spheres)
         for (TileKey k : grid_.tilesNear(s.center_m, s.radius_m + t.activeDistance_m))
             if (std::find(needed.begin(), needed.end(), k) == needed.end()) needed.push_back(k);
-    uploadParams(in, 0u, 0.f, in.time_s);
-    activate(pool_.update(needed, in.time_s).activated);
+    activate(in, pool_.update(needed, in.time_s).activated);
 
     const std::uint32_t blades = pool_.slotsInUse() * static_cast<std::uint32_t>(patch_.size());
     if (blades == 0) return;
@@ -256,7 +245,7 @@ void TiledField::emit(const PassInputs& in) {
     }
     tilesDrawn_ = list.size();
     uploadTiles(list);
-    uploadParams(in, static_cast<std::uint32_t>(list.size()), 0.f, in.time_s);
+    uploadParams(in, static_cast<std::uint32_t>(list.size()));
 
     CullSettings cull = cullSettingsOf(scene_);
     cull.distance = false;  // thinning by threshold replaces Eq. (15)
@@ -286,26 +275,24 @@ void TiledField::emit(const PassInputs& in) {
     context_.checkErrors("TiledField::emit");
 }
 
-std::vector<gpu::BladeGpu> TiledField::readSimulatedTile(TileKey tile) const {
-    const auto slot = pool_.slotOf(tile);
-    if (!slot) return {};
+std::vector<gpu::BladeGpu> TiledField::readPoolSlot(std::uint32_t slot) const {
     std::vector<gpu::BladeGpu> out(patch_.size());
     glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
     glGetNamedBufferSubData(
-        poolBlades_.id(), static_cast<GLintptr>(*slot * patch_.size() * sizeof(gpu::BladeGpu)),
+        poolBlades_.id(), static_cast<GLintptr>(slot * patch_.size() * sizeof(gpu::BladeGpu)),
         static_cast<GLsizeiptr>(out.size() * sizeof(gpu::BladeGpu)), out.data());
     return out;
 }
 
+std::vector<gpu::BladeGpu> TiledField::readSimulatedTile(TileKey tile) const {
+    const auto slot = pool_.slotOf(tile);
+    return slot ? readPoolSlot(*slot) : std::vector<gpu::BladeGpu>{};
+}
+
 std::vector<gpu::BladeGpu> TiledField::settledTile(TileKey tile, const PassInputs& in) {
-    uploadParams(in, 0u, 0.f, in.time_s);
     const auto scratch = static_cast<std::uint32_t>(pool_.capacity());
-    activate({{tile, scratch}});
-    std::vector<gpu::BladeGpu> out(patch_.size());
-    glGetNamedBufferSubData(
-        poolBlades_.id(), static_cast<GLintptr>(scratch * patch_.size() * sizeof(gpu::BladeGpu)),
-        static_cast<GLsizeiptr>(out.size() * sizeof(gpu::BladeGpu)), out.data());
-    return out;
+    activate(in, {{tile, scratch}});
+    return readPoolSlot(scratch);
 }
 
 }  // namespace meadow::runtime

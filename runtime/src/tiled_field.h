@@ -56,10 +56,15 @@ public:
 
 private:
     void uploadTiles(const std::vector<gpu::TileDrawGpu>& tiles);
-    void uploadParams(const PassInputs& in, std::uint32_t tileCount, float dt_s, float time_s);
+    // The tiling parameters for tileCount listed tiles, and the physics parameters (this
+    // frame's wind) the settled pose reads.
+    void uploadParams(const PassInputs& in, std::uint32_t tileCount);
     void bindShared() const;
     void uploadSlices();
-    void activate(const std::vector<std::pair<TileKey, std::uint32_t>>& tiles);
+    // Fills each (tile, slot) pair's pool slot with the tile's settled blades.
+    void activate(const PassInputs& in,
+                  const std::vector<std::pair<TileKey, std::uint32_t>>& tiles);
+    [[nodiscard]] std::vector<gpu::BladeGpu> readPoolSlot(std::uint32_t slot) const;
 
     GlContext& context_;
     const SceneDescription& scene_;
