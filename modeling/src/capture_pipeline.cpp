@@ -1,6 +1,7 @@
 #include "meadow/modeling/capture_pipeline.h"
 
 #include <algorithm>
+#include <string_view>
 
 #include "meadow/modeling/archetype_merge.h"
 #include "meadow/modeling/blade_observations.h"
@@ -29,9 +30,14 @@ namespace {
 // so the message counts the flags and quotes only the first few notes.
 std::string noBladeModelledMessage(const std::string& sourceName, const CaptureSummary& summary) {
     constexpr std::size_t kQuotedNotes = 3;
-    if (summary.segmentations > 0 && summary.noPlantSegmentations == summary.segmentations)
-        return "capture: no plant in " + sourceName + " (" + summary.noPlant +
-               "); aim the camera at the plant, or give its depth band with --near/--far";
+    if (summary.segmentations > 0 && summary.noPlantSegmentations == summary.segmentations) {
+        constexpr std::string_view kPrefix = "no plant in view: ";
+        const std::string why = summary.noPlant.starts_with(kPrefix)
+                                    ? summary.noPlant.substr(kPrefix.size())
+                                    : summary.noPlant;
+        return "capture: no plant in " + sourceName + ": " + why +
+               "; aim the camera at the plant, or give its depth band with --near/--far";
+    }
     std::string m = "capture: no blade of " + sourceName +
                     " could be modelled: " + std::to_string(summary.bladesFound) + " found in " +
                     std::to_string(summary.segmentations) + " segmentation(s)";

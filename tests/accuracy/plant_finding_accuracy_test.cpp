@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <string>
 #include <vector>
 
 #include "meadow/capture/segmenter.h"
@@ -22,13 +23,20 @@ struct Found {
     int views = 0, withPlant = 0;
 };
 
-Found findInViews(const ScannedPlant& plant, int views) {
+capture::SegmenterParams findingBy(capture::PlantFinding finding) {
+    capture::SegmenterParams params;
+    params.plantFinding = finding;
+    return params;
+}
+
+Found findInViews(
+    const ScannedPlant& plant, int views,
+    const capture::SegmenterParams& params = findingBy(capture::PlantFinding::Clusters),
+    std::string* lastReason = nullptr) {
     const SensorModel model = sensorModel(SensorKind::KinectV1);
     const SimulatedSensor sensor(model.intrinsics, model.noise);
     PlantViewOptions options;
     options.views = views;
-    capture::SegmenterParams params;
-    params.plantFinding = capture::PlantFinding::Clusters;
     const capture::Segmenter segmenter(params);
     Found f;
     long plantPixels = 0, plantFound = 0, maskPixels = 0, roomInMask = 0;
@@ -39,6 +47,7 @@ Found findInViews(const ScannedPlant& plant, int views) {
         const capture::Segmentation seg = segmenter.segment(frame);
         ++f.views;
         f.withPlant += !seg.noPlant;
+        if (lastReason) *lastReason = seg.noBladesReason;
         if (seg.clusterMask.empty()) continue;
         for (int y = 0; y < frame.depth_mm.rows; ++y)
             for (int x = 0; x < frame.depth_mm.cols; ++x) {
@@ -70,12 +79,39 @@ TEST(PlantFinding, AGrownMaizeShootIsFoundAndTheRoomLeftOut) {
     EXPECT_LE(f.roomShare, 0.1);
 }
 
-// A room of planes and furniture-like boxes and no plant: no plant, and no mask.
-TEST(PlantFinding, ARoomWithoutAPlantHasNone) {
+// The default depth band takes the nearest depth mode, here a leaf's or the plant's: it must not
+// take the plant for furniture.
+TEST(PlantFinding, AGrownMaizeShootIsNotTakenForFurnitureByTheDepthBand) {
+    const auto scans = test::sharedDataDir() / "real" / "maize-label3d";
+    if (!std::filesystem::exists(scans)) GTEST_SKIP() << "shared data not present: " << scans;
+    const ScannedPlant plant = loadScannedPlant(scans / "v-9-1-l-r.txt");
+    const Found f = findInViews(plant, 4, findingBy(capture::PlantFinding::DepthMode));
+    EXPECT_EQ(f.withPlant, f.views);
+}
+
+// The same shoot, stood farther than plantMaxDepth_m (here set below its 1 m): not a plant,
+// and the reason says how far is too far.
+TEST(PlantFinding, AShootFartherThanAPlantIsCapturedFromIsNone) {
+    const auto scans = test::sharedDataDir() / "real" / "maize-label3d";
+    if (!std::filesystem::exists(scans)) GTEST_SKIP() << "shared data not present: " << scans;
+    const ScannedPlant plant = loadScannedPlant(scans / "v-9-1-l-r.txt");
+    capture::SegmenterParams params = findingBy(capture::PlantFinding::Clusters);
+    params.plantMaxDepth_m = 0.5f;
+    std::string reason;
+    const Found f = findInViews(plant, 1, params, &reason);
+    EXPECT_EQ(f.withPlant, 0);
+    EXPECT_NE(reason.find("farther than 0.5 m"), std::string::npos) << reason;
+}
+
+// A room of planes and furniture-like boxes and no plant: no plant, and no mask, whichever way
+// the plant is looked for.
+class RoomWithoutAPlant : public ::testing::TestWithParam<capture::PlantFinding> {};
+
+TEST_P(RoomWithoutAPlant, HasNone) {
     const SensorModel model = sensorModel(SensorKind::KinectV1);
     const SimulatedSensor sensor(model.intrinsics, model.noise);
     capture::SegmenterParams params;
-    params.plantFinding = capture::PlantFinding::Clusters;
+    params.plantFinding = GetParam();
     capture::DepthFrame frame;
     frame.depth_mm = sensor.render(calibrationRoom(), 1).depth_mm;
     frame.intrinsics = model.intrinsics;
@@ -84,6 +120,15 @@ TEST(PlantFinding, ARoomWithoutAPlantHasNone) {
     EXPECT_TRUE(seg.blades.empty());
     EXPECT_NE(seg.noBladesReason.find("no plant"), std::string::npos) << seg.noBladesReason;
 }
+
+INSTANTIATE_TEST_SUITE_P(PlantFinding, RoomWithoutAPlant,
+                         ::testing::Values(capture::PlantFinding::DepthMode,
+                                           capture::PlantFinding::Clusters),
+                         [](const auto& info) {
+                             return info.param == capture::PlantFinding::Clusters
+                                        ? std::string("Clusters")
+                                        : std::string("DepthMode");
+                         });
 
 }  // namespace
 }  // namespace meadow::synth

@@ -6,6 +6,7 @@
 #include "cli/cli_test_util.h"
 #include "meadow/capture/recording.h"
 #include "meadow/modeling/archetype_library.h"
+#include "support/shared_data.h"
 
 namespace fs = std::filesystem;
 using meadow::test::countLines;
@@ -293,4 +294,29 @@ TEST(CaptureCli, TwelveFramesFusedByRecurringReadingsAreOneSegmentation) {
     EXPECT_NE(bad.output.find("--fusion"), std::string::npos) << bad.output;
     EXPECT_NE(bad.output.find("nearest-recurring"), std::string::npos) << bad.output;
     EXPECT_FALSE(fs::exists(dir / "bad.json"));
+}
+
+// The shared real scenes hold no plant (a room seen by a Kinect, an office in the TUM frame):
+// capture says so in one line, exits 2 and writes no library, also with --keep-flagged.
+TEST(CaptureCli, RealScenesWithoutAPlantSayNoPlantInOneLine) {
+    const fs::path oni = meadow::test::realOniRecording();
+    const fs::path tumFrame = meadow::test::sharedDataDir() / "real/tum-frame/TUM_depth.png";
+    if (!fs::exists(oni) || !fs::exists(tumFrame))
+        GTEST_SKIP() << "shared data absent: " << oni << ", " << tumFrame;
+    const fs::path dir = freshTempDir("capture_no_plant");
+    fs::create_directories(dir / "tum");
+    fs::copy_file(tumFrame, dir / "tum" / "TUM_depth.png");  // a folder of depth PNGs
+    const std::string tum =
+        (dir / "tum").string() + " --intrinsics 525,525,319.5,239.5 --depth-unit 0.2mm";
+    for (const std::string& source : {oni.string(), tum})
+        for (const char* keep : {"", " --keep-flagged"}) {
+            const fs::path out = dir / "lib.json";
+            const auto r = runMeadow("capture " + source + keep + " --out " + out.string());
+            EXPECT_EQ(r.exitCode, 2) << source << keep << ": " << r.output;
+            EXPECT_EQ(countLines(r.output), 1) << source << keep << ": " << r.output;
+            EXPECT_NE(r.output.find("no plant in"), std::string::npos)
+                << source << keep << ": " << r.output;
+            EXPECT_FALSE(fs::exists(out)) << source << keep;
+        }
+    fs::remove_all(dir);
 }

@@ -180,10 +180,11 @@ std::vector<std::uint8_t> sceneryBins(const cv::Mat1w& depth_mm, const cv::Mat1b
 
 // The nearest mode with enough mass that is neither scenery nor a flat, level patch, the bins
 // in `leftOut` counting as empty; found = false when there is none.
+// `notLeaves`: set when the nearest such mode is not made of leaves (no band then), and how.
 DepthBand nearestMode(const DepthHistogram& h, const std::vector<std::uint8_t>& leftOut,
                       const cv::Mat1w& depth_mm, const cv::Mat1b& mask,
                       const Intrinsics& intrinsics, const SegmenterParams& params,
-                      StageReport& report) {
+                      std::string& notLeaves, StageReport& report) {
     const int bins = static_cast<int>(h.count.size());
     const auto countAt = [&](int i) {
         return leftOut[static_cast<std::size_t>(i)] ? 0.0 : h.count[static_cast<std::size_t>(i)];
@@ -248,6 +249,24 @@ DepthBand nearestMode(const DepthHistogram& h, const std::vector<std::uint8_t>& 
             peak = hi;
             continue;
         }
+        // The nearest object is taken for the plant: a door's edge or a chair's back there means
+        // there is no plant in view (a mode beyond it is a slice of the room, whose outlines
+        // are as thin as leaves).
+        cv::Mat1b modePixels = cv::Mat1b::zeros(depth_mm.size());
+        for (int y = 0; y < depth_mm.rows; ++y)
+            for (int x = 0; x < depth_mm.cols; ++x)
+                if (const auto d = depth_mm(y, x); d != 0 && mask(y, x) != 0)
+                    if (const int b = h.binOf(d);
+                        b >= lo && b <= hi && !leftOut[static_cast<std::size_t>(b)])
+                        modePixels(y, x) = 255;
+        if (const std::string unlike = unlikeLeaves(modePixels, depth_mm, intrinsics, params);
+            !unlike.empty()) {
+            const std::string at =
+                "at " + metres((static_cast<float>(peak) + 0.5f) * params.histogramBin_m);
+            report.notes.push_back("the nearest mode, " + at + ", is not leaves: " + unlike);
+            notLeaves = at + ", is " + unlike;
+            return {};
+        }
         DepthBand band;
         band.near_m = static_cast<float>(lo) * params.histogramBin_m;
         band.far_m = static_cast<float>(hi + 1) * params.histogramBin_m;
@@ -277,8 +296,10 @@ DepthBand automaticDepthBand(const cv::Mat1w& depth_mm, const cv::Mat1b& mask,
         return {};
     }
     const std::vector<std::uint8_t> none(h.count.size(), 0);
-    DepthBand band = nearestMode(h, none, depth_mm, mask, intrinsics, params, report);
-    if (band.found || !groundRemoved) return band;
+    std::string notLeaves;
+    DepthBand band = nearestMode(h, none, depth_mm, mask, intrinsics, params, notLeaves, report);
+    band.notLeaves = notLeaves;
+    if (band.found || !groundRemoved || !notLeaves.empty()) return band;
     // Every mode was scenery. A tuft can share one with a wall or the ground behind it: the
     // smoothing bleeds the scenery's mass into the tuft's depths, and the merged mode is skipped
     // whole and no blades are found. So look again without the bins that alone reach across the
@@ -297,7 +318,8 @@ DepthBand automaticDepthBand(const cv::Mat1w& depth_mm, const cv::Mat1b& mask,
         std::to_string(static_cast<long long>(sceneryPixels)) + " px that each span over " +
         std::to_string(static_cast<int>(100 * kSceneryColumnCoverage)) +
         " % of the image columns across the frame (a wall or the ground seen at an angle)");
-    band = nearestMode(h, scenery, depth_mm, mask, intrinsics, params, report);
+    band = nearestMode(h, scenery, depth_mm, mask, intrinsics, params, notLeaves, report);
+    band.notLeaves = notLeaves;
     if (!band.found) return band;
     band.scenery = cv::Mat1b::zeros(depth_mm.size());
     for (int y = 0; y < depth_mm.rows; ++y)

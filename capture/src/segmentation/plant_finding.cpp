@@ -35,11 +35,6 @@ constexpr int kClusterStride_px = 2;  // clusters are found on every 2nd pixel o
 // a floor or wall in view far above.
 constexpr float kMinPlaneSpread_m = 0.12f;
 constexpr double kMinPlaneFill = 0.25;
-// A pot's wall is wider than a leaf: an opening with a disc of this diameter keeps the pot and
-// the soil, not the leaves. Wider leaves than this seen face-on survive it too, but only the part
-// that holds the plant's lowest row is taken for the pot.
-constexpr float kPotMinWidth_m = 0.035f;
-constexpr float kPotHeightOverWidth = 1.3f;
 // A plane's readings spread with depth: a Kinect's disparity steps are z^2 / 345 m apart, 46 mm
 // at 4 m. Its inliers are taken within scenePlaneDistance_m + this z^2, about three steps beyond
 // the near tolerance, or a far wall leaves slivers a plant's width.
@@ -295,62 +290,20 @@ std::vector<Cluster> euclideanClusters(const cv::Mat1w& depth_mm, const Intrinsi
     return out;
 }
 
-// How thick a cluster's parts are: the median over its pixels of twice the distance to its
-// edge, in metres at its median depth. A leaf's pixels lie a centimetre or two from its edges; a
-// box's, a chair's or a wall's remnants' tens of centimetres, or (slivers) under one.
-void measureParts(Cluster& c, const Intrinsics& k) {
-    const cv::Rect box = grownWithin(cv::boundingRect(c.mask), 1, cv::Rect({0, 0}, c.mask.size()));
-    cv::Mat1f distance;
-    cv::distanceTransform(c.mask(box), distance, cv::DIST_L2, cv::DIST_MASK_PRECISE);
-    std::vector<float> d;
-    for (int y = 0; y < distance.rows; ++y)
-        for (int x = 0; x < distance.cols; ++x)
-            if (c.mask(box)(y, x)) d.push_back(distance(y, x));
-    std::nth_element(d.begin(), d.begin() + d.size() / 2, d.end());
-    c.meanWidth_m = 2.f * d[d.size() / 2] * c.medianDepth_m / k.fx_px;
-}
-
-// Clears the pot: the thick part (an opening by a disc kPotMinWidth_m across) that holds the
-// cluster's lowest rows, and a rim of 2 px around it. Returns what went.
-cv::Mat1b removePot(Cluster& c, const Intrinsics& k) {
-    const int diameter_px =
-        std::max(3, static_cast<int>(std::lround(kPotMinWidth_m * k.fx_px / c.medianDepth_m)));
-    cv::Mat1b pot = cv::Mat1b::zeros(c.mask.size());
-    const cv::Rect box = cv::boundingRect(c.mask);
-    const cv::Rect around = grownWithin(box, diameter_px, cv::Rect({0, 0}, c.mask.size()));
-    const cv::Mat1b part = c.mask(around);
-    cv::Mat1b thick;
-    cv::morphologyEx(part, thick, cv::MORPH_OPEN,
-                     cv::getStructuringElement(cv::MORPH_ELLIPSE, {diameter_px, diameter_px}));
-    if (cv::countNonZero(thick) == 0) return pot;
-    const int lowest = box.y + box.height - 1 - around.y;
-    cv::Mat1i labels;
-    cv::Mat stats, centroids;
-    const int n = cv::connectedComponentsWithStats(thick, labels, stats, centroids, 8);
-    cv::Mat1b potPart = pot(around);
-    for (int i = 1; i < n; ++i) {
-        const int top = stats.at<int>(i, cv::CC_STAT_TOP);
-        const int bottom = top + stats.at<int>(i, cv::CC_STAT_HEIGHT) - 1;
-        if (bottom < lowest - diameter_px / 2) continue;
-        // A pot is about as tall as it is wide: the thick part is cleared from its bottom up to
-        // kPotHeightOverWidth times its width there, not where thick leaves join it above.
-        int width_px = 0;  // its widest row near its bottom (a pot's bottom row is a rim)
-        for (int y = std::max(top, bottom - diameter_px); y <= bottom; ++y) {
-            int row = 0;
-            for (int x = 0; x < labels.cols; ++x) row += labels(y, x) == i;
-            width_px = std::max(width_px, row);
-        }
-        const int from = std::max(top, bottom - static_cast<int>(kPotHeightOverWidth * width_px));
-        for (int y = from; y <= bottom; ++y)
-            for (int x = 0; x < labels.cols; ++x)
-                if (labels(y, x) == i) potPart(y, x) = 255;
+// Whether the mask runs off the top of what the sensor read along more than a few columns
+// (one stray pixel there is a leaf's tip, at most).
+bool runsOffTop(const cv::Mat1b& mask, const SensedExtent& sensed) {
+    constexpr int kMinColumns = 4;
+    int columns = 0;
+    for (int x = 0; x < mask.cols; ++x) {
+        const int top = sensed.firstY[static_cast<std::size_t>(x)];
+        for (int y = std::max(0, top - 1); y <= std::min(mask.rows - 1, top + 1); ++y)
+            if (mask(y, x)) {
+                ++columns;
+                break;
+            }
     }
-    if (cv::countNonZero(potPart) == 0) return pot;
-    cv::dilate(potPart, potPart, cv::getStructuringElement(cv::MORPH_ELLIPSE, {5, 5}));
-    potPart &= part;
-    c.mask(around) &= ~potPart;
-    c.area_px = cv::countNonZero(c.mask);
-    return pot;
+    return columns >= kMinColumns;
 }
 
 }  // namespace
@@ -383,16 +336,35 @@ FoundPlant findPlant(const cv::Mat1w& depth_mm, const Intrinsics& k, const Segme
     std::ostringstream seen;
     seen.precision(2);
     std::vector<std::size_t> thin;
+    const SensedExtent sensed = SensedExtent::of(depth_mm);
+    int offTop = 0;  // thin and large enough, but running off the top of the view
+    int tooFar = 0;  // thin and large enough, but farther than a plant is captured from
     for (std::size_t i = 0; i < clusters.size(); ++i) {
         Cluster& c = clusters[i];
         // A pot, a box on the floor, a chair's seat: what stands thick on its bottom goes first,
         // so that the parts measured are what grows out of it.
-        c.pot = removePot(c, k);
+        c.pot = thickBase(c.mask, c.medianDepth_m, k);
+        const cv::Mat1b whole = c.mask.clone();
+        c.mask &= ~c.pot;
+        c.area_px = cv::countNonZero(c.mask);
         if (c.area_px == 0) continue;
-        measureParts(c, k);
-        if (c.meanWidth_m <= p.plantMaxMeanWidth_m && c.height_m >= p.plantMinHeight_m &&
-            c.area_px >= minArea_px && c.nearPlanes <= kMaxRemnantShare)
+        const PartShape shape = partShape(c.mask, c.medianDepth_m, k, true, whole);
+        c.meanWidth_m = shape.width_m;
+        if (c.meanWidth_m <= p.plantMaxMeanWidth_m && shape.elongation >= kMinLeafElongation &&
+            c.height_m >= p.plantMinHeight_m && c.area_px >= minArea_px &&
+            c.nearPlanes <= kMaxRemnantShare) {
+            // A plant put before the camera is seen up to its top leaves; what goes on above
+            // the view (a door's frame, a curtain, a lamp's pole) is the room's.
+            if (runsOffTop(c.mask, sensed)) {
+                ++offTop;
+                continue;
+            }
+            if (c.medianDepth_m > p.plantMaxDepth_m) {
+                ++tooFar;
+                continue;
+            }
             thin.push_back(i);
+        }
     }
     report.notes.push_back(std::to_string(clusters.size()) + " cluster(s) after " +
                            std::to_string(planes.size()) + " scene plane(s), " +
@@ -406,7 +378,13 @@ FoundPlant findPlant(const cv::Mat1w& depth_mm, const Intrinsics& k, const Segme
         else
             why << clusters.size() << " object(s) stand apart from the floor and walls, none "
                 << "large enough and made of parts under " << p.plantMaxMeanWidth_m * 100
-                << " cm wide, as leaves are";
+                << " cm wide and " << kMinLeafElongation << " times as long, as leaves are";
+        if (offTop > 0)
+            why << "; " << offTop << " that run(s) off the top of the view (a plant too near "
+                << "the camera, or a pole or frame of the room)";
+        if (tooFar > 0)
+            why << "; " << tooFar << " farther than " << p.plantMaxDepth_m
+                << " m (a plant is captured from nearer)";
         plant.whyNot = why.str();
         return plant;
     }

@@ -68,6 +68,7 @@ std::string SegmenterParams::problem() const {
         {"fragmentMinAspect", fragmentMinAspect, 1.f, 1000.f},
         {"fragmentLinkAngle_deg", fragmentLinkAngle_deg, 0.f, 90.f},
         {"sceneMaxDepth_m", sceneMaxDepth_m, 0.1f, kMaxDepth_m},
+        {"plantMaxDepth_m", plantMaxDepth_m, 0.1f, kMaxDepth_m},
         {"scenePlaneDistance_m", scenePlaneDistance_m, 1e-4f, 1.f},
         {"minScenePlaneShare", minScenePlaneShare, 0.f, 1.f},
         {"clusterTolerance_m", clusterTolerance_m, 1e-3f, 1.f},
@@ -226,7 +227,10 @@ struct Segmenter::Impl {
         out.nearDepth_m = band.near_m;
         out.farDepth_m = band.far_m;
         if (!band.found) {
-            out.noBladesReason = "no depth mode holds enough pixels to be a tuft (see report)";
+            out.noPlant = !band.notLeaves.empty();
+            out.noBladesReason =
+                out.noPlant ? "no plant in view: the nearest object, " + band.notLeaves
+                            : "no depth mode holds enough pixels to be a tuft (see report)";
             out.clusterMask = cv::Mat1b::zeros(depth_mm.size());
             return out;
         }

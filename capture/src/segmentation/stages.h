@@ -37,14 +37,18 @@ struct DepthBand {
     // which the automatic band left out of its histogram; the band must not grow into them.
     // Empty when there are none.
     cv::Mat1b scenery;
+    // Why no band was found when the nearest mode is not made of leaves (empty otherwise):
+    // "at 0.66 m, is 4.3 times as long as it is wide (leaves: over 5)".
+    std::string notLeaves;
 };
 // The nearest histogram mode with enough mass, widened to its valleys (Fan & Sheng 2017,
 // Sec. 4.1 use a user-set depth band; this finds one when the user gives none).
 // Only pixels set in `mask` count (ground removed first, so the ground's own mode cannot win).
 // A mode whose points form a flat, level patch (ground the plane fit left, or all the ground
-// when no plane is fitted) is skipped: a tuft stands up from the ground. When every mode is
-// skipped and `groundRemoved` (the plane fit found the ground), the modes are looked for again
-// without the depth bins whose pixels alone reach across most of the image columns (a wall
+// when no plane is fitted) is skipped: a tuft stands up from the ground. When the nearest mode
+// left is not made of leaves (unlikeLeaves: a door's edge, a chair), there is no band. When every
+// mode is skipped and `groundRemoved` (the plane fit found the ground), the modes are looked for
+// again without the depth bins whose pixels alone reach across most of the image columns (a wall
 // behind the tuft); the band's `scenery` then holds those bins' pixels.
 DepthBand automaticDepthBand(const cv::Mat1w& depth_mm, const cv::Mat1b& mask,
                              const Intrinsics& intrinsics, const SegmenterParams& params,
@@ -70,6 +74,33 @@ struct FoundPlant {
 };
 FoundPlant findPlant(const cv::Mat1w& depth_mm, const Intrinsics& intrinsics,
                      const SegmenterParams& params, StageReport& report);
+
+// part_shape.cpp: the shape of the parts of `mask`. `width_m`: the median over its pixels of
+// twice the distance to its edge (about half a strip's width), in metres at `depth_m`;
+// `elongation`: how many times longer than wide its strips are, summed.
+struct PartShape {
+    float width_m = 0.f;
+    float elongation = 0.f;
+};
+// Leaves, summed over a plant, are many times longer than wide (a maize leaf 10-20 times, a
+// grass blade 30 or more); a cushion, an arm or a chair's back is not.
+inline constexpr float kMinLeafElongation = 5.f;
+// `fillHoles`: holes up to 3 cm across are filled first (a depth slice of a solid object is
+// riddled with them; the clusters of PlantFinding::Clusters are grown back over them).
+// `cutFrom`: the object `mask` was cut from (its base taken off), in which the distances to the
+// edge are measured, so that the cut is no edge; empty: `mask` itself.
+PartShape partShape(const cv::Mat1b& mask, float depth_m, const Intrinsics& intrinsics,
+                    bool fillHoles, const cv::Mat1b& cutFrom = {});
+// The thick part `mask` stands in at its bottom (a pot and its soil, seen at `depth_m`): what an
+// opening by a disc 3.5 cm across keeps that holds its lowest rows, from its bottom up to 1.3
+// times its width there, and a rim of 2 px. Frame-sized; empty where there is none.
+cv::Mat1b thickBase(const cv::Mat1b& mask, float depth_m, const Intrinsics& intrinsics);
+// How `mask`, its thick base (thickBase) taken off, differs from a plant's leaves ("made of
+// parts 7.3 cm wide (leaves: under 4 cm)"), or empty when its parts are at most
+// SegmenterParams::plantMaxMeanWidth_m thick at its median depth and, summed, at least
+// kMinLeafElongation times longer than wide.
+std::string unlikeLeaves(const cv::Mat1b& mask, const cv::Mat1w& depth_mm,
+                         const Intrinsics& intrinsics, const SegmenterParams& params);
 
 // plane_removal.cpp (PCL). Clears mask pixels on large oblique planes (ground, table top).
 // Returns the ground: the plane with the most inliers, as Segmentation::groundPlane.
