@@ -23,6 +23,7 @@
 #include "meadow/synth/library_score.h"
 #include "meadow/synth/plant_synthesize.h"
 #include "meadow/synth/synthesize.h"
+#include "plant/truth_partition.h"
 
 namespace meadow::bench {
 namespace {
@@ -86,6 +87,9 @@ modeling::ArchetypeLibrary captureEachFrame(const fs::path& recording, int frame
     return library;
 }
 
+// The row of the truth's own leaves, each modelled as capture models a blade.
+constexpr const char* kTruthLeaves = "truth leaves (bound)";
+
 // The baseline's depth band: the plant's distance from the camera +- kBaselineBand_m, as a user
 // would set it.
 constexpr float kBaselineBand_m = 0.3f;
@@ -133,7 +137,7 @@ std::string cells(const Row& r) {
         << (r.lengthError.empty() ? "-" : fixed(100.0 * median(r.lengthError), 0) + " %") << " | "
         << (r.widthError.empty() ? "-" : fixed(100.0 * median(r.widthError), 0) + " %") << " | "
         << fixed(r.countError / views, 1) << " | " << fixed(r.baselineCountError / views, 1)
-        << " | " << fixed(median(r.capture_ms), 0);
+        << " | " << (r.capture_ms.empty() ? "-" : fixed(median(r.capture_ms), 0));
     return out.str();
 }
 
@@ -145,7 +149,8 @@ std::string csvRow(const Row& r) {
     for (double f : r.falseBlades) out << ',' << fixed(f / views, 3);
     out << ',' << orBlank(r.lengthError, median(r.lengthError), 3) << ','
         << orBlank(r.widthError, median(r.widthError), 3) << ',' << fixed(r.countError / views, 2)
-        << ',' << fixed(r.baselineCountError / views, 2) << ',' << fixed(median(r.capture_ms), 1);
+        << ',' << fixed(r.baselineCountError / views, 2) << ','
+        << orBlank(r.capture_ms, median(r.capture_ms), 1);
     return out.str();
 }
 
@@ -195,9 +200,14 @@ int run(int argc, char** argv) {
         {capture::PlantFinding::Clusters, capture::PartitionMethod::Contour},
         {capture::PlantFinding::Clusters, capture::PartitionMethod::StemGraph}};
     const auto findingName = [](const Method& m) { return m.name(); };
+    // The last kind of row per sensor: the truth's own leaves, modelled (the partition's bound).
+    const std::size_t kinds = findings.size() + 1;
+    const auto kindName = [&](std::size_t f) {
+        return f < findings.size() ? findingName(findings[f]) : std::string(kTruthLeaves);
+    };
     for (const std::string& sensor : haveScans ? sensors : std::vector<std::string>{}) {
-        std::vector<Row> totals(findings.size());
-        std::vector<std::vector<Row>> perPlant(findings.size());
+        std::vector<Row> totals(kinds);
+        std::vector<std::vector<Row>> perPlant(kinds);
         for (const std::string& plant : plants) {
             synth::PlantSynthOptions o;
             o.plant = scans / (plant + "-l-r.txt");
@@ -206,25 +216,26 @@ int run(int argc, char** argv) {
             o.out = set / sensor / plant;
             if (!(reuse && fs::exists(o.out / "truth" / "plant.json"))) synth::synthesizePlant(o);
             const synth::PlantTruth truth = synth::readPlantTruth(o.out / "truth" / "plant.json");
-            for (std::size_t f = 0; f < findings.size(); ++f) {
+            const synth::ScoringTruth scoring = synth::scoringTruthOf(truth, o.out / "truth");
+            for (std::size_t f = 0; f < kinds; ++f) {
                 std::vector<double> ms;
                 const modeling::ArchetypeLibrary library =
-                    captureEachFrame(o.out, views, ms, true, findings[f]);
-                Row row = score(library, synth::scoringTruthOf(truth, o.out / "truth"), o.out,
-                                truth.options.distance_m);
+                    f < findings.size() ? captureEachFrame(o.out, views, ms, true, findings[f])
+                                        : modelTruthLeaves(o.out, scoring, {});
+                Row row = score(library, scoring, o.out, truth.options.distance_m);
                 row.capture_ms = ms;
                 row.set = "maize", row.sensor = sensor, row.what = plant;
-                row.finding = findingName(findings[f]);
+                row.finding = kindName(f);
                 std::cout << sensor << ' ' << row.finding << ' ' << plant << ": " << cells(row)
                           << '\n';
                 totals[f].add(row);
                 perPlant[f].push_back(row);
             }
         }
-        for (std::size_t f = 0; f < findings.size(); ++f) {
+        for (std::size_t f = 0; f < kinds; ++f) {
             rows.insert(rows.end(), perPlant[f].begin(), perPlant[f].end());
             totals[f].set = "maize", totals[f].sensor = sensor, totals[f].what = "all";
-            totals[f].finding = findingName(findings[f]);
+            totals[f].finding = kindName(f);
             rows.push_back(totals[f]);
         }
     }
@@ -270,7 +281,12 @@ int run(int argc, char** argv) {
           "within max(10 mm, 5 % of the leaf's length) of the leaf's centre line over 80 % of "
           "the shorter of the two. False blades are archetypes that match no leaf, named by what "
           "their spine lies on. Count error: |archetypes - leaves| per view; the baseline counts "
-          "end points of a thinned depth band (synth/leaf_counter.h). The tuft rows score the "
+          "end points of a thinned depth band (synth/leaf_counter.h). The rows \""
+       << kTruthLeaves
+       << "\" bound what any partition could reach on these views: each leaf cut as the truth "
+          "cuts it (its own pixels the sensor read, its base and tip where its true centre "
+          "line starts and ends) and modelled as capture models a blade; what they miss, the "
+          "sensor did not show well enough or the model cannot hold. The tuft rows score the "
           "synthetic presets' first fused group the same way.\n\n"
           "| Set | Sensor | Capture | Plant | Views | Leaves | Recall | False / view | "
           "False on | Length error (median) | Width error (median) | Count error | Baseline "
