@@ -4,7 +4,6 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
-#include <string>
 #include <vector>
 
 #include "meadow/capture/segmenter.h"
@@ -31,8 +30,7 @@ capture::SegmenterParams findingBy(capture::PlantFinding finding) {
 
 Found findInViews(
     const ScannedPlant& plant, int views,
-    const capture::SegmenterParams& params = findingBy(capture::PlantFinding::Clusters),
-    std::string* lastReason = nullptr) {
+    const capture::SegmenterParams& params = findingBy(capture::PlantFinding::Clusters)) {
     const SensorModel model = sensorModel(SensorKind::KinectV1);
     const SimulatedSensor sensor(model.intrinsics, model.noise);
     PlantViewOptions options;
@@ -47,7 +45,6 @@ Found findInViews(
         const capture::Segmentation seg = segmenter.segment(frame);
         ++f.views;
         f.withPlant += !seg.noPlant;
-        if (lastReason) *lastReason = seg.noBladesReason;
         if (seg.clusterMask.empty()) continue;
         for (int y = 0; y < frame.depth_mm.rows; ++y)
             for (int x = 0; x < frame.depth_mm.cols; ++x) {
@@ -87,20 +84,6 @@ TEST(PlantFinding, AGrownMaizeShootIsNotTakenForFurnitureByTheDepthBand) {
     const ScannedPlant plant = loadScannedPlant(scans / "v-9-1-l-r.txt");
     const Found f = findInViews(plant, 4, findingBy(capture::PlantFinding::DepthMode));
     EXPECT_EQ(f.withPlant, f.views);
-}
-
-// The same shoot, stood farther than plantMaxDepth_m (here set below its 1 m): not a plant,
-// and the reason says how far is too far.
-TEST(PlantFinding, AShootFartherThanAPlantIsCapturedFromIsNone) {
-    const auto scans = test::sharedDataDir() / "real" / "maize-label3d";
-    if (!std::filesystem::exists(scans)) GTEST_SKIP() << "shared data not present: " << scans;
-    const ScannedPlant plant = loadScannedPlant(scans / "v-9-1-l-r.txt");
-    capture::SegmenterParams params = findingBy(capture::PlantFinding::Clusters);
-    params.plantMaxDepth_m = 0.5f;
-    std::string reason;
-    const Found f = findInViews(plant, 1, params, &reason);
-    EXPECT_EQ(f.withPlant, 0);
-    EXPECT_NE(reason.find("farther than 0.5 m"), std::string::npos) << reason;
 }
 
 // A room of planes and furniture-like boxes and no plant: no plant, and no mask, whichever way

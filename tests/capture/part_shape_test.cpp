@@ -3,6 +3,7 @@
 // at 1 m before the Kinect v1 intrinsics, where a pixel is 1.74 mm.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <opencv2/imgproc.hpp>
 
 #include "meadow/capture/intrinsics.h"
@@ -87,6 +88,26 @@ TEST(PartShape, ATableIsTooWide) {
     table(cv::Rect(30, 90, 10, 150)).setTo(255);  // on legs 1.7 cm thick
     table(cv::Rect(280, 90, 10, 150)).setTo(255);
     EXPECT_NE(unlikeLeaves(table).find("cm wide"), std::string::npos) << unlikeLeaves(table);
+}
+
+// A tray of lettuce seen from above: six heads 13 cm across apart from each other, each a
+// rosette of eight broad leaves (ellipses 7 x 4.9 cm, their centres 3 cm out) that overlap
+// into a lobed disc. Taken together their lengths add up to a long strip's; each is round.
+TEST(PartShape, ATrayOfLettuceFromAboveIsNotLeaves) {
+    cv::Mat1b tray = cv::Mat1b::zeros(kFrame);
+    for (int row = 0; row < 2; ++row)
+        for (int col = 0; col < 3; ++col) {
+            const cv::Point centre(60 + 100 * col, 90 + 130 * row);
+            for (int leaf = 0; leaf < 8; ++leaf) {
+                const double angle = 45.0 * leaf;
+                const cv::Point offset(static_cast<int>(17 * std::cos(angle * CV_PI / 180)),
+                                       static_cast<int>(17 * std::sin(angle * CV_PI / 180)));
+                cv::ellipse(tray, centre + offset, {20, 14}, angle, 0, 360, 255, cv::FILLED);
+            }
+        }
+    EXPECT_NE(unlikeLeaves(tray), "");
+    const seg::PartShape shape = seg::partShape(tray, kDepth_m, kIntrinsics, true);
+    EXPECT_LT(shape.elongation, seg::kMinLeafElongation);
 }
 
 TEST(PartShape, AShortEdgeIsNotElongatedEnough) {

@@ -95,9 +95,22 @@ PartShape partShape(const cv::Mat1b& mask, float depth_m, const Intrinsics& k, b
     // median doubled is W/2, and its length is its area over W. The distance transform measures
     // to the centre of the nearest pixel outside, half a pixel past the edge.
     const float width_px = 2.f * std::max(d[d.size() / 2] - 0.5f, 0.5f);
+    // Each piece's length over that width, weighted by its area: a plant's leaves, joined or
+    // apart, are each long; a tray of round heads or a heap of cushions is many short pieces
+    // whose lengths would add up to a long one.
+    cv::Mat1i labels;
+    cv::Mat stats, centroids;
+    const int n = cv::connectedComponentsWithStats(counted, labels, stats, centroids, 8);
+    double area = 0.0, areaSquared = 0.0;
+    for (int i = 1; i < n; ++i) {
+        const double a = stats.at<int>(i, cv::CC_STAT_AREA);
+        area += a;
+        areaSquared += a * a;
+    }
     PartShape shape;
     shape.width_m = width_px * depth_m / k.fx_px;
-    shape.elongation = static_cast<float>(d.size()) / (4.f * width_px * width_px);
+    shape.elongation =
+        static_cast<float>(areaSquared / std::max(area, 1.0)) / (4.f * width_px * width_px);
     return shape;
 }
 

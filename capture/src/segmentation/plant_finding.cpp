@@ -338,7 +338,6 @@ FoundPlant findPlant(const cv::Mat1w& depth_mm, const Intrinsics& k, const Segme
     std::vector<std::size_t> thin;
     const SensedExtent sensed = SensedExtent::of(depth_mm);
     int offTop = 0;  // thin and large enough, but running off the top of the view
-    int tooFar = 0;  // thin and large enough, but farther than a plant is captured from
     for (std::size_t i = 0; i < clusters.size(); ++i) {
         Cluster& c = clusters[i];
         // A pot, a box on the floor, a chair's seat: what stands thick on its bottom goes first,
@@ -357,10 +356,6 @@ FoundPlant findPlant(const cv::Mat1w& depth_mm, const Intrinsics& k, const Segme
             // the view (a door's frame, a curtain, a lamp's pole) is the room's.
             if (runsOffTop(c.mask, sensed)) {
                 ++offTop;
-                continue;
-            }
-            if (c.medianDepth_m > p.plantMaxDepth_m) {
-                ++tooFar;
                 continue;
             }
             thin.push_back(i);
@@ -382,9 +377,6 @@ FoundPlant findPlant(const cv::Mat1w& depth_mm, const Intrinsics& k, const Segme
         if (offTop > 0)
             why << "; " << offTop << " that run(s) off the top of the view (a plant too near "
                 << "the camera, or a pole or frame of the room)";
-        if (tooFar > 0)
-            why << "; " << tooFar << " farther than " << p.plantMaxDepth_m
-                << " m (a plant is captured from nearer)";
         plant.whyNot = why.str();
         return plant;
     }

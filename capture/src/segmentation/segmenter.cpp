@@ -68,7 +68,6 @@ std::string SegmenterParams::problem() const {
         {"fragmentMinAspect", fragmentMinAspect, 1.f, 1000.f},
         {"fragmentLinkAngle_deg", fragmentLinkAngle_deg, 0.f, 90.f},
         {"sceneMaxDepth_m", sceneMaxDepth_m, 0.1f, kMaxDepth_m},
-        {"plantMaxDepth_m", plantMaxDepth_m, 0.1f, kMaxDepth_m},
         {"scenePlaneDistance_m", scenePlaneDistance_m, 1e-4f, 1.f},
         {"minScenePlaneShare", minScenePlaneShare, 0.f, 1.f},
         {"clusterTolerance_m", clusterTolerance_m, 1e-3f, 1.f},

@@ -77,13 +77,14 @@ FoundPlant findPlant(const cv::Mat1w& depth_mm, const Intrinsics& intrinsics,
 
 // part_shape.cpp: the shape of the parts of `mask`. `width_m`: the median over its pixels of
 // twice the distance to its edge (about half a strip's width), in metres at `depth_m`;
-// `elongation`: how many times longer than wide its strips are, summed.
+// `elongation`: how many times longer than wide its pieces are, each by its area over that
+// width, weighted by its area.
 struct PartShape {
     float width_m = 0.f;
     float elongation = 0.f;
 };
-// Leaves, summed over a plant, are many times longer than wide (a maize leaf 10-20 times, a
-// grass blade 30 or more); a cushion, an arm or a chair's back is not.
+// Leaves are many times longer than wide (a maize leaf 10-20 times, a grass blade 30 or more);
+// a cushion, an arm, a chair's back or a lettuce head is not.
 inline constexpr float kMinLeafElongation = 5.f;
 // `fillHoles`: holes up to 3 cm across are filled first (a depth slice of a solid object is
 // riddled with them; the clusters of PlantFinding::Clusters are grown back over them).
@@ -97,8 +98,8 @@ PartShape partShape(const cv::Mat1b& mask, float depth_m, const Intrinsics& intr
 cv::Mat1b thickBase(const cv::Mat1b& mask, float depth_m, const Intrinsics& intrinsics);
 // How `mask`, its thick base (thickBase) taken off, differs from a plant's leaves ("made of
 // parts 7.3 cm wide (leaves: under 4 cm)"), or empty when its parts are at most
-// SegmenterParams::plantMaxMeanWidth_m thick at its median depth and, summed, at least
-// kMinLeafElongation times longer than wide.
+// SegmenterParams::plantMaxMeanWidth_m thick at its median depth and its pieces, by
+// area, at least kMinLeafElongation times longer than wide.
 std::string unlikeLeaves(const cv::Mat1b& mask, const cv::Mat1w& depth_mm,
                          const Intrinsics& intrinsics, const SegmenterParams& params);
 

@@ -128,9 +128,6 @@ struct SegmenterParams {
     int maxScenePlanes = 4;               // floor, two walls, a table top
     float clusterTolerance_m = 0.02f;     // points nearer than this are one object
     int minClusterPoints = 50;            // on every 2nd pixel of every 2nd row
-    // Clusters: the plant stands at most this far (its median depth). Farther, a leaf 2 cm wide
-    // is 4 px across and a Kinect's depth steps 2 cm apart: nothing left to model.
-    float plantMaxDepth_m = 2.5f;
     // A plant is made of thin parts: the median over its pixels of twice the distance to its
     // edge (a leaf's width, about) at most plantMaxMeanWidth_m, after the thick part it stands
     // in (a pot) is taken off; and it stands at least plantMinHeight_m tall. Boxes, furniture,
