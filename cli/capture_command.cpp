@@ -130,6 +130,13 @@ void runCapture(CaptureArgs& args) {
                   << "): those frames were segmented one by one, without recurring readings, and "
                      "modelled one "
                      "archetype per group (--assume-still takes every run for still)\n";
+    if (const auto& stem = result.library.stem) {
+        std::ostringstream height;
+        height.precision(2);
+        height << std::fixed << stem->height_m;
+        std::cout << "stem " << height.str() << " m from its foot to the highest leaf's node "
+                  << "(median of " << stem->views << " segmentation(s))\n";
+    }
     if (const std::string skipped = modeling::skippedSummary(s); !skipped.empty())
         std::cout << skipped << '\n';
     if (!s.notes.empty()) {

@@ -11,6 +11,11 @@ namespace meadow::modeling {
 
 using nlohmann::json;
 
+namespace {
+// No plant a depth camera frames has a taller stem: a larger value is a unit mistake.
+constexpr float kMaxStemHeight_m = 10.f;
+}  // namespace
+
 ArchetypeLibrary parseArchetypeLibrary(const std::string& jsonText, const std::string& origin) {
     const std::string where = "archetype library " + origin + ": ";
     ArchetypeLibrary lib;
@@ -29,6 +34,14 @@ ArchetypeLibrary parseArchetypeLibrary(const std::string& jsonText, const std::s
             const json& merges = reader.array("merges");
             for (std::size_t i = 0; i < merges.size(); ++i)
                 lib.merges.push_back(detail::mergeFromJson(merges[i], elementPath("merges", i)));
+        }
+        if (reader.has("stem")) {
+            const JsonReader stem = reader.object("stem");
+            const float height = stem.floatNumber("height_m");
+            if (height < 0.f || height > kMaxStemHeight_m)
+                stem.fail("height_m", "must lie in [0, " + std::to_string(kMaxStemHeight_m) +
+                                          "] m, got " + std::to_string(height));
+            lib.stem = StemMeasure{height, stem.integer("views", 1, 1 << 30)};
         }
     } catch (const JsonError& e) {
         switch (e.kind()) {
@@ -62,6 +75,7 @@ std::string serialiseArchetypeLibrary(const ArchetypeLibrary& lib) {
         doc["archetypes"].push_back(detail::archetypeToJson(a));
     doc["merges"] = json::array();
     for (const ArchetypeMerge& m : lib.merges) doc["merges"].push_back(detail::mergeToJson(m));
+    if (lib.stem) doc["stem"] = {{"height_m", lib.stem->height_m}, {"views", lib.stem->views}};
     return doc.dump(2) + "\n";
 }
 

@@ -5,6 +5,7 @@
 
 #include "meadow/modeling/archetype_merge.h"
 #include "meadow/modeling/blade_observations.h"
+#include "meadow/modeling/stem_height.h"
 #include "meadow/modeling/error.h"
 
 namespace meadow::modeling {
@@ -84,9 +85,13 @@ CaptureResult captureArchetypes(capture::DepthSource& source, const std::string&
     CaptureSummary& summary = result.summary;
 
     BladeObservations observations;
+    std::vector<float> stemHeights_m;
     const auto observe = [&](const std::vector<capture::GroupSegmentation>& segmented) {
-        for (const capture::GroupSegmentation& group : segmented)
+        for (const capture::GroupSegmentation& group : segmented) {
             observeGroup(group, options, observations, summary);
+            if (const auto height = stemHeight_m(group.segmentation, group.frames.front()))
+                stemHeights_m.push_back(*height);
+        }
     };
     const int total = framesToRead(source, options.maxFrames);
     while (total <= 0 || summary.framesRead < total) {
@@ -99,6 +104,7 @@ CaptureResult captureArchetypes(capture::DepthSource& source, const std::string&
         if (progress) progress(summary.framesRead, std::max(total, summary.framesRead));
     }
     observe(groups.finish());
+    result.library.stem = stemOf(std::move(stemHeights_m));
     summary.motionTests = groups.motionTests();
     summary.movingRuns = groups.movingRuns();
 

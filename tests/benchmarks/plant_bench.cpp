@@ -23,6 +23,7 @@
 #include "meadow/synth/library_score.h"
 #include "meadow/synth/plant_synthesize.h"
 #include "meadow/synth/synthesize.h"
+#include "plant/stem_truth.h"
 #include "plant/truth_partition.h"
 
 namespace meadow::bench {
@@ -39,6 +40,7 @@ struct Row {
     int views = 0, leaves = 0, matched = 0;
     std::array<double, 7> falseBlades{};  // summed over views, by FalseBladeOn
     std::vector<float> lengthError, widthError;
+    std::vector<float> stemError;  // |measured - true| / true stem height, one per plant
     double countError = 0.0, baselineCountError = 0.0;  // summed over views
     std::vector<double> capture_ms;                     // per frame
     void add(const Row& o) {
@@ -46,6 +48,7 @@ struct Row {
         for (std::size_t k = 0; k < falseBlades.size(); ++k) falseBlades[k] += o.falseBlades[k];
         lengthError.insert(lengthError.end(), o.lengthError.begin(), o.lengthError.end());
         widthError.insert(widthError.end(), o.widthError.begin(), o.widthError.end());
+        stemError.insert(stemError.end(), o.stemError.begin(), o.stemError.end());
         countError += o.countError, baselineCountError += o.baselineCountError;
         capture_ms.insert(capture_ms.end(), o.capture_ms.begin(), o.capture_ms.end());
     }
@@ -136,6 +139,7 @@ std::string cells(const Row& r) {
     out << (by.empty() ? "-" : by) << " | "
         << (r.lengthError.empty() ? "-" : fixed(100.0 * median(r.lengthError), 0) + " %") << " | "
         << (r.widthError.empty() ? "-" : fixed(100.0 * median(r.widthError), 0) + " %") << " | "
+        << (r.stemError.empty() ? "-" : fixed(100.0 * median(r.stemError), 0) + " %") << " | "
         << fixed(r.countError / views, 1) << " | " << fixed(r.baselineCountError / views, 1)
         << " | " << (r.capture_ms.empty() ? "-" : fixed(median(r.capture_ms), 0));
     return out.str();
@@ -148,7 +152,8 @@ std::string csvRow(const Row& r) {
         << r.leaves << ',' << fixed(r.leaves ? double(r.matched) / r.leaves : 0.0, 3);
     for (double f : r.falseBlades) out << ',' << fixed(f / views, 3);
     out << ',' << orBlank(r.lengthError, median(r.lengthError), 3) << ','
-        << orBlank(r.widthError, median(r.widthError), 3) << ',' << fixed(r.countError / views, 2)
+        << orBlank(r.widthError, median(r.widthError), 3) << ','
+        << orBlank(r.stemError, median(r.stemError), 3) << ',' << fixed(r.countError / views, 2)
         << ',' << fixed(r.baselineCountError / views, 2) << ','
         << orBlank(r.capture_ms, median(r.capture_ms), 1);
     return out.str();
@@ -223,6 +228,10 @@ int run(int argc, char** argv) {
                     f < findings.size() ? captureEachFrame(o.out, views, ms, true, findings[f])
                                         : modelTruthLeaves(o.out, scoring, {});
                 Row row = score(library, scoring, o.out, truth.options.distance_m);
+                if (library.stem)
+                    row.stemError.push_back(
+                        std::abs(library.stem->height_m - truthStemHeight_m(truth)) /
+                        truthStemHeight_m(truth));
                 row.capture_ms = ms;
                 row.set = "maize", row.sensor = sensor, row.what = plant;
                 row.finding = kindName(f);
@@ -281,7 +290,11 @@ int run(int argc, char** argv) {
           "within max(10 mm, 5 % of the leaf's length) of the leaf's centre line over 80 % of "
           "the shorter of the two. False blades are archetypes that match no leaf, named by what "
           "their spine lies on. Count error: |archetypes - leaves| per view; the baseline counts "
-          "end points of a thinned depth band (synth/leaf_counter.h). The rows \""
+          "end points of a thinned depth band (synth/leaf_counter.h). Stem height error "
+          "(stem-graph "
+          "rows): |measured - true| / true for each plant, the height the library reports (its "
+          "views' median, from the stem's foot to the highest node) against the truth's (from "
+          "the foot to the farthest leaf base). The rows \""
        << kTruthLeaves
        << "\" bound what any partition could reach on these views: each leaf cut as the truth "
           "cuts it (its own pixels the sensor read, its base and tip where its true centre "
@@ -289,9 +302,9 @@ int run(int argc, char** argv) {
           "sensor did not show well enough or the model cannot hold. The tuft rows score the "
           "synthetic presets' first fused group the same way.\n\n"
           "| Set | Sensor | Capture | Plant | Views | Leaves | Recall | False / view | "
-          "False on | Length error (median) | Width error (median) | Count error | Baseline "
-          "count error | Capture ms / frame |\n"
-          "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+          "False on | Length error (median) | Width error (median) | Stem height error (median) | "
+          "Count error | Baseline count error | Capture ms / frame |\n"
+          "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
     for (const Row& r : rows)
         md << "| " << r.set << " | " << r.sensor << " | " << r.finding << " | "
            << (r.what == "all" ? "**all**" : r.what) << " | " << cells(r) << " |\n";
@@ -300,7 +313,8 @@ int run(int argc, char** argv) {
     csv << "set,sensor,capture,plant,views,leaves,recall";
     for (std::size_t k = 0; k < 7; ++k)
         csv << ",false_on_" << synth::kFalseBladeOnNames.name(static_cast<synth::FalseBladeOn>(k));
-    csv << ",length_error_median,width_error_median,count_error,baseline_count_error,capture_ms\n";
+    csv << ",length_error_median,width_error_median,stem_height_error_median,count_error,baseline_"
+           "count_error,capture_ms\n";
     for (const Row& r : rows) csv << csvRow(r) << '\n';
     writeText(out / "plant_benchmark.csv", csv.str());
     return 0;

@@ -46,6 +46,20 @@ TEST(StemPartition, LeavesLeavingAStemComeOutOneABladeWithoutTheStem) {
     }
 }
 
+// The stem's line runs from where the plant stands, the stem's foot at row 190, to where the
+// highest leaves leave it at (100, 110).
+TEST(StemPartition, TheStemRunsFromItsFootToTheHighestNode) {
+    SegmenterParams params;
+    params.partition = PartitionMethod::StemGraph;
+    params.edgeSmoothingSigma_px = 0.f;
+    const Segmentation seg = Segmenter(params).segmentMask(plantMask());
+    ASSERT_EQ(seg.clusters.size(), 1u) << seg.summary();
+    const std::vector<cv::Point>& stem = seg.clusters[0].stemLine_px;
+    ASSERT_GE(stem.size(), 2u);
+    EXPECT_LE(cv::norm(stem.front() - cv::Point(100, 190)), 6.0) << stem.front();
+    EXPECT_LE(cv::norm(stem.back() - cv::Point(100, 110)), 6.0) << stem.back();
+}
+
 TEST(StemPartition, SpursOfTheEdgeAreNoLeaves) {
     cv::Mat1b mask = plantMask();
     // A bump on the stem's side, 6 px out: its skeleton branch is a spur.

@@ -170,3 +170,21 @@ TEST(ArchetypeLibrary, ALibraryWrittenBeforeSourceFlagsAndSightingsStillReads) {
     EXPECT_TRUE(back.archetypes[0].source.seenIn.empty());
     EXPECT_EQ(back.archetypes[0].source.frame, 2);
 }
+
+// The stem is optional: a library with one keeps its height and view count, one without has
+// none, and a height out of range or views under 1 are refused naming the field.
+TEST(ArchetypeLibrary, TheStemIsOptionalAndChecked) {
+    ArchetypeLibrary lib = sampleLibrary();
+    EXPECT_FALSE(parseArchetypeLibrary(serialiseArchetypeLibrary(lib), "mem").stem);
+    lib.stem = StemMeasure{0.625f, 12};
+    const ArchetypeLibrary back = parseArchetypeLibrary(serialiseArchetypeLibrary(lib), "mem");
+    ASSERT_TRUE(back.stem);
+    EXPECT_EQ(back.stem->height_m, 0.625f);
+    EXPECT_EQ(back.stem->views, 12);
+    nlohmann::json doc = nlohmann::json::parse(serialiseArchetypeLibrary(lib));
+    doc["stem"]["height_m"] = 625;  // millimetres
+    expectRejected(doc.dump(), "stem.height_m: must lie in [0, 10");
+    doc["stem"]["height_m"] = 0.625;
+    doc["stem"]["views"] = 0;
+    expectRejected(doc.dump(), "stem.views");
+}

@@ -185,7 +185,7 @@ std::vector<BladeContour> partitionCluster(BladeCluster& cluster, const cv::Mat1
 // stem_partition.cpp: PartitionMethod::StemGraph. The cluster's skeleton walked from its base
 // point; pixels with two or more tips beyond them are the stem; each tip's branch back to the
 // stem is a leaf, with the cluster pixels nearest it. Contours run from the leaf's base (where
-// it meets the stem) round its tip and back.
+// it meets the stem) round its tip and back. Sets the cluster's stemLine_px.
 // `plantBase` (when known, from PlantFinding::Clusters): where the plant stands; the skeleton is
 // walked from its pixel nearest that point rather than from the cluster's lowest point, which
 // on a plant of drooping leaves is a leaf's tip.

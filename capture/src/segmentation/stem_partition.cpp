@@ -90,6 +90,20 @@ std::vector<cv::Point> branchOf(const SkeletonTree& t, const cv::Mat1i& beyond, 
     }
 }
 
+// The stem's skeleton from the root to its pixel farthest along the tree (the highest node a
+// leaf leaves at), offset by `origin`; empty when no pixel has two tips beyond it.
+std::vector<cv::Point> stemLine(const SkeletonTree& t, const cv::Mat1i& beyond, cv::Point origin) {
+    const int cols = t.parent.cols;
+    int top = kNone;
+    for (const int i : t.order)  // breadth first: the last stem pixel is the farthest
+        if (beyond(i / cols, i % cols) >= 2) top = i;
+    std::vector<cv::Point> line;
+    for (int i = top; i != kNone; i = t.parent(i / cols, i % cols))
+        line.push_back(cv::Point(i % cols, i / cols) + origin);
+    std::reverse(line.begin(), line.end());
+    return line;
+}
+
 }  // namespace
 
 std::vector<BladeContour> partitionByStem(BladeCluster& cluster, const cv::Mat1b& mask,
@@ -139,6 +153,7 @@ std::vector<BladeContour> partitionByStem(BladeCluster& cluster, const cv::Mat1b
     cv::Mat1b stem(box.size(), std::uint8_t{0});
     for (const cv::Point& p : onSkeleton)
         if (beyond(p) >= 2) stem(p) = 255;
+    cluster.stemLine_px = stemLine(tree, beyond, box.tl());
     struct Leaf {
         cv::Point tip, base;
         std::vector<cv::Point> branch;

@@ -280,6 +280,9 @@ struct BladeCluster {
     std::vector<int> cutIndices;        // indices into contour_px where blades meet
     std::vector<float> distance_px;     // smoothed distance to reference along the contour
     std::vector<int> bladeIds;          // ids of this cluster's blades in Segmentation::blades
+    // PartitionMethod::StemGraph: the stem's skeleton, from where the plant stands to the
+    // highest point a leaf leaves it at, in image pixels; empty when no leaves leave a stem.
+    std::vector<cv::Point> stemLine_px;
     int area_px = 0;
     std::vector<BladeFlag> flags;
     std::vector<std::string> reasons;

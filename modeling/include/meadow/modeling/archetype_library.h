@@ -3,6 +3,7 @@
 // versioned JSON file (docs/formats.md#archetype-library), optionally with a glTF 2.0 .glb
 // holding one mesh per archetype for DCC tools.
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -21,11 +22,18 @@ struct ArchetypeMerge {
     float shapeDistance_m = 0.f;      // largest shape distance inside the group
 };
 
+// The plant's stem, when capture cut its leaves from one (--partition stem-graph).
+struct StemMeasure {
+    float height_m = 0.f;  // the median over the segmentations that saw it, foot to top node
+    int views = 0;         // how many segmentations saw it
+};
+
 struct ArchetypeLibrary {
     std::string generator = "meadow";  // what wrote it (e.g. "meadow capture 0.1.0")
     std::string source;                // where the blades came from (recording path, preset)
     std::vector<Archetype> archetypes;
     std::vector<ArchetypeMerge> merges;
+    std::optional<StemMeasure> stem;  // optional in the file
 };
 
 // Throws ModelingError naming the file and the first problem: not JSON, wrong format name,
