@@ -6,6 +6,7 @@
 #include <opencv2/imgcodecs.hpp>
 
 #include "cli_test_util.h"
+#include "meadow/modeling/archetype_library.h"
 #include "meadow/synth/plant_synthesize.h"
 #include "support/made_plant.h"
 #include "support/shared_data.h"
@@ -49,6 +50,28 @@ TEST(PlantSynthCli, AMadePlantBecomesATurntableRecordingWithItsTruth) {
              {meadow::synth::kFloorLabel, meadow::synth::kWallLabel, meadow::synth::kPotLabel})
             EXPECT_GT(cv::countNonZero(labels == label), 100) << "label " << label;
     }
+}
+
+// The made plant's leaves leave its stem at 5 and 10 cm: captured with the stem-graph partition,
+// the library's stem runs from its foot to the higher node, 10 cm, within the pot's rim and a
+// few pixels (3 cm), and capture prints it.
+TEST(PlantSynthCli, AMadePlantsStemHeightIsInTheLibrary) {
+    const fs::path dir = freshTempDir("plant_stem");
+    const fs::path plant = meadow::test::writeMadePlant(dir / "made.txt");
+    const fs::path rec = dir / "rec";
+    ASSERT_EQ(runMeadow("synth --plant " + plant.string() + " --turntable 4 --out " + rec.string())
+                  .exitCode,
+              0);
+    const auto c = runMeadow("capture " + rec.string() +
+                             " --fuse 1 --per-group --assume-still --find-plant clusters "
+                             "--partition stem-graph --keep-flagged --out " +
+                             (dir / "lib.json").string());
+    ASSERT_EQ(c.exitCode, 0) << c.output;
+    EXPECT_NE(c.output.find("stem 0."), std::string::npos) << c.output;
+    const auto library = meadow::modeling::loadArchetypeLibrary(dir / "lib.json");
+    ASSERT_TRUE(library.stem);
+    EXPECT_NEAR(library.stem->height_m, meadow::test::kMadeLeaves[1].attach_m, 0.03f);
+    EXPECT_GE(library.stem->views, 1);
 }
 
 // A turntable recording of a real maize shoot (12 views 30 deg apart) given to capture as one

@@ -3,6 +3,7 @@
 // standing along the file's +Z (so reading it must find up): a stem (a cylinder of points,
 // label 1) and two arching leaves (ribbons of points, labels 2 and 3) leaving it at known
 // heights, with their true lengths and widths.
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
