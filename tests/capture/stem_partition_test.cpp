@@ -26,11 +26,16 @@ cv::Mat1b plantMask() {
     return mask;
 }
 
-TEST(StemPartition, LeavesLeavingAStemComeOutOneABladeWithoutTheStem) {
+// The mask cut by the stem, its edges as drawn (no smoothing).
+Segmentation segmentByStem(const cv::Mat1b& mask) {
     SegmenterParams params;
     params.partition = PartitionMethod::StemGraph;
     params.edgeSmoothingSigma_px = 0.f;
-    const Segmentation seg = Segmenter(params).segmentMask(plantMask());
+    return Segmenter(params).segmentMask(mask);
+}
+
+TEST(StemPartition, LeavesLeavingAStemComeOutOneABladeWithoutTheStem) {
+    const Segmentation seg = segmentByStem(plantMask());
     ASSERT_EQ(seg.blades.size(), 3u) << seg.summary();
     for (const DrawnLeaf& leaf : kLeaves) {
         int found = 0;
@@ -49,10 +54,7 @@ TEST(StemPartition, LeavesLeavingAStemComeOutOneABladeWithoutTheStem) {
 // The stem's line runs from where the plant stands, the stem's foot at row 190, to where the
 // highest leaves leave it at (100, 110).
 TEST(StemPartition, TheStemRunsFromItsFootToTheHighestNode) {
-    SegmenterParams params;
-    params.partition = PartitionMethod::StemGraph;
-    params.edgeSmoothingSigma_px = 0.f;
-    const Segmentation seg = Segmenter(params).segmentMask(plantMask());
+    const Segmentation seg = segmentByStem(plantMask());
     ASSERT_EQ(seg.clusters.size(), 1u) << seg.summary();
     const std::vector<cv::Point>& stem = seg.clusters[0].stemLine_px;
     ASSERT_GE(stem.size(), 2u);
@@ -64,10 +66,7 @@ TEST(StemPartition, SpursOfTheEdgeAreNoLeaves) {
     cv::Mat1b mask = plantMask();
     // A bump on the stem's side, 6 px out: its skeleton branch is a spur.
     cv::circle(mask, {106, 170}, 4, 255, cv::FILLED);
-    SegmenterParams params;
-    params.partition = PartitionMethod::StemGraph;
-    params.edgeSmoothingSigma_px = 0.f;
-    const Segmentation seg = Segmenter(params).segmentMask(mask);
+    const Segmentation seg = segmentByStem(mask);
     EXPECT_EQ(seg.blades.size(), 3u) << seg.summary();
 }
 
