@@ -1,5 +1,5 @@
 // Debug overlay in the manner of Fan & Sheng 2017, Fig. 4: depth in grey, the cluster mask
-// tinted, every blade in its own colour, contours, centre and base point, cut points.
+// tinted, every blade in its own colour, contours, centre and base point, cut points, the stem.
 #include <cmath>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
@@ -65,6 +65,10 @@ cv::Mat3b renderDebugOverlay(const DepthFrame& frame, const Segmentation& s) {
                         cv::FONT_HERSHEY_SIMPLEX, 0.5, cv::Scalar(0, 0, 255), 1);
     }
     for (const auto& c : s.clusters) {
+        // The stem as the stem-graph partition found it: where the leaves' bases should lie.
+        if (c.stemLine_px.size() >= 2)
+            cv::polylines(out, std::vector<std::vector<cv::Point>>{c.stemLine_px}, false,
+                          cv::Scalar(255, 255, 255), 2);
         cv::drawMarker(out, c.centre_px, cv::Scalar(0, 255, 255), cv::MARKER_CROSS, kMarker_px, 2);
         cv::drawMarker(out, c.basePoint_px, cv::Scalar(255, 0, 255), cv::MARKER_DIAMOND, kMarker_px,
                        2);
