@@ -567,5 +567,21 @@ TEST(SegmenterOverlay, WritesAPngWithEveryBladeColoured) {
     EXPECT_THROW(writeDebugOverlay("/proc/no/such/dir/x.png", drawn.frame, s), CaptureError);
 }
 
+// A cluster's stem line is drawn white along its length; without one nothing is.
+TEST(SegmenterOverlay, DrawsTheStemWhite) {
+    DepthFrame frame;
+    frame.depth_mm = cv::Mat1w(120, 160, std::uint16_t{1000});
+    Segmentation s;
+    s.clusters.emplace_back();
+    s.clusters[0].centre_px = s.clusters[0].basePoint_px = {10.f, 10.f};
+    const cv::Mat3b without = renderDebugOverlay(frame, s);
+    s.clusters[0].stemLine_px = {{80, 110}, {80, 60}, {90, 30}};
+    const cv::Mat3b with = renderDebugOverlay(frame, s);
+    for (const cv::Point p : {cv::Point(80, 100), cv::Point(80, 70), cv::Point(85, 45)}) {
+        EXPECT_EQ(with(p), cv::Vec3b(255, 255, 255)) << p;
+        EXPECT_NE(without(p), cv::Vec3b(255, 255, 255)) << p;
+    }
+}
+
 }  // namespace
 }  // namespace meadow::capture
