@@ -178,13 +178,25 @@ std::vector<std::uint8_t> sceneryBins(const cv::Mat1w& depth_mm, const cv::Mat1b
     return scenery;
 }
 
+// The pixels of `mask` with a reading whose histogram bin `takesBin` takes, frame-sized.
+template <class TakesBin>
+cv::Mat1b pixelsOfBins(const cv::Mat1w& depth_mm, const cv::Mat1b& mask, const DepthHistogram& h,
+                       TakesBin takesBin) {
+    cv::Mat1b out = cv::Mat1b::zeros(depth_mm.size());
+    for (int y = 0; y < depth_mm.rows; ++y)
+        for (int x = 0; x < depth_mm.cols; ++x)
+            if (const auto d = depth_mm(y, x); d != 0 && mask(y, x) != 0 && takesBin(h.binOf(d)))
+                out(y, x) = 255;
+    return out;
+}
+
 // The nearest mode with enough mass that is neither scenery nor a flat, level patch, the bins
-// in `leftOut` counting as empty; found = false when there is none.
-// `notLeaves`: set when the nearest such mode is not made of leaves (no band then), and how.
+// in `leftOut` counting as empty; found = false when there is none, with `notLeaves` set when
+// the nearest such mode is not made of leaves.
 DepthBand nearestMode(const DepthHistogram& h, const std::vector<std::uint8_t>& leftOut,
                       const cv::Mat1w& depth_mm, const cv::Mat1b& mask,
                       const Intrinsics& intrinsics, const SegmenterParams& params,
-                      std::string& notLeaves, StageReport& report) {
+                      StageReport& report) {
     const int bins = static_cast<int>(h.count.size());
     const auto countAt = [&](int i) {
         return leftOut[static_cast<std::size_t>(i)] ? 0.0 : h.count[static_cast<std::size_t>(i)];
@@ -252,20 +264,17 @@ DepthBand nearestMode(const DepthHistogram& h, const std::vector<std::uint8_t>& 
         // The nearest object is taken for the plant: a door's edge or a chair's back there means
         // there is no plant in view (a mode beyond it is a slice of the room, whose outlines
         // are as thin as leaves).
-        cv::Mat1b modePixels = cv::Mat1b::zeros(depth_mm.size());
-        for (int y = 0; y < depth_mm.rows; ++y)
-            for (int x = 0; x < depth_mm.cols; ++x)
-                if (const auto d = depth_mm(y, x); d != 0 && mask(y, x) != 0)
-                    if (const int b = h.binOf(d);
-                        b >= lo && b <= hi && !leftOut[static_cast<std::size_t>(b)])
-                        modePixels(y, x) = 255;
+        const cv::Mat1b modePixels = pixelsOfBins(depth_mm, mask, h, [&](int b) {
+            return b >= lo && b <= hi && !leftOut[static_cast<std::size_t>(b)];
+        });
         if (const std::string unlike = unlikeLeaves(modePixels, depth_mm, intrinsics, params);
             !unlike.empty()) {
             const std::string at =
                 "at " + metres((static_cast<float>(peak) + 0.5f) * params.histogramBin_m);
             report.notes.push_back("the nearest mode, " + at + ", is not leaves: " + unlike);
-            notLeaves = at + ", is " + unlike;
-            return {};
+            DepthBand none;
+            none.notLeaves = at + ", is " + unlike;
+            return none;
         }
         DepthBand band;
         band.near_m = static_cast<float>(lo) * params.histogramBin_m;
@@ -296,10 +305,8 @@ DepthBand automaticDepthBand(const cv::Mat1w& depth_mm, const cv::Mat1b& mask,
         return {};
     }
     const std::vector<std::uint8_t> none(h.count.size(), 0);
-    std::string notLeaves;
-    DepthBand band = nearestMode(h, none, depth_mm, mask, intrinsics, params, notLeaves, report);
-    band.notLeaves = notLeaves;
-    if (band.found || !groundRemoved || !notLeaves.empty()) return band;
+    DepthBand band = nearestMode(h, none, depth_mm, mask, intrinsics, params, report);
+    if (band.found || !groundRemoved || !band.notLeaves.empty()) return band;
     // Every mode was scenery. A tuft can share one with a wall or the ground behind it: the
     // smoothing bleeds the scenery's mass into the tuft's depths, and the merged mode is skipped
     // whole and no blades are found. So look again without the bins that alone reach across the
@@ -318,15 +325,10 @@ DepthBand automaticDepthBand(const cv::Mat1w& depth_mm, const cv::Mat1b& mask,
         std::to_string(static_cast<long long>(sceneryPixels)) + " px that each span over " +
         std::to_string(static_cast<int>(100 * kSceneryColumnCoverage)) +
         " % of the image columns across the frame (a wall or the ground seen at an angle)");
-    band = nearestMode(h, scenery, depth_mm, mask, intrinsics, params, notLeaves, report);
-    band.notLeaves = notLeaves;
+    band = nearestMode(h, scenery, depth_mm, mask, intrinsics, params, report);
     if (!band.found) return band;
-    band.scenery = cv::Mat1b::zeros(depth_mm.size());
-    for (int y = 0; y < depth_mm.rows; ++y)
-        for (int x = 0; x < depth_mm.cols; ++x)
-            if (const auto d = depth_mm(y, x);
-                d != 0 && mask(y, x) != 0 && scenery[static_cast<std::size_t>(h.binOf(d))])
-                band.scenery(y, x) = 255;
+    band.scenery = pixelsOfBins(depth_mm, mask, h,
+                                [&](int b) { return scenery[static_cast<std::size_t>(b)] != 0; });
     return band;
 }
 
