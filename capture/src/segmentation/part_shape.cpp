@@ -114,6 +114,18 @@ PartShape partShape(const cv::Mat1b& mask, float depth_m, const Intrinsics& k, b
     return shape;
 }
 
+std::string unlikeLeafParts(const PartShape& shape, const SegmenterParams& params) {
+    std::ostringstream why;
+    why.precision(2);
+    if (shape.width_m > params.plantMaxMeanWidth_m)
+        why << "made of parts " << shape.width_m * 100 << " cm wide (leaves: under "
+            << params.plantMaxMeanWidth_m * 100 << " cm)";
+    else if (shape.elongation < kMinLeafElongation)
+        why << shape.elongation << " times as long as it is wide (leaves: over "
+            << kMinLeafElongation << ")";
+    return why.str();
+}
+
 std::string unlikeLeaves(const cv::Mat1b& mask, const cv::Mat1w& depth_mm, const Intrinsics& k,
                          const SegmenterParams& params) {
     std::vector<std::uint16_t> depths;
@@ -127,22 +139,11 @@ std::string unlikeLeaves(const cv::Mat1b& mask, const cv::Mat1w& depth_mm, const
     // A young plant's pot may stand nearest: its leaves are what grows out of it.
     const cv::Mat1b parts = mask & ~thickBase(mask, depth_m, k);
     const int partsArea = cv::countNonZero(parts);
+    if (partsArea < kMinPartsShare * static_cast<double>(cv::countNonZero(mask)))
+        return "thick throughout (a pot, a box or furniture; no leaves grow out of it)";
     // The parts are measured within the whole object: where they were cut from its base is no
     // edge (the top of a box taller than a pot is as thick as the box, not a strip).
-    const PartShape shape = partShape(parts, depth_m, k, true, mask);
-    std::ostringstream why;
-    why.precision(2);
-    if (partsArea < kMinPartsShare * static_cast<double>(cv::countNonZero(mask)))
-        why << "thick throughout (a pot, a box or furniture; no leaves grow out of it)";
-    else if (shape.width_m > params.plantMaxMeanWidth_m)
-        why << "made of parts " << shape.width_m * 100 << " cm wide (leaves: under "
-            << params.plantMaxMeanWidth_m * 100 << " cm)";
-    else if (shape.elongation < kMinLeafElongation)
-        why << shape.elongation << " times as long as it is wide (leaves: over "
-            << kMinLeafElongation << ")";
-    else
-        return {};
-    return why.str();
+    return unlikeLeafParts(partShape(parts, depth_m, k, true, mask), params);
 }
 
 }  // namespace meadow::capture::segmentation

@@ -349,9 +349,8 @@ FoundPlant findPlant(const cv::Mat1w& depth_mm, const Intrinsics& k, const Segme
         if (c.area_px == 0) continue;
         const PartShape shape = partShape(c.mask, c.medianDepth_m, k, true, whole);
         c.meanWidth_m = shape.width_m;
-        if (c.meanWidth_m <= p.plantMaxMeanWidth_m && shape.elongation >= kMinLeafElongation &&
-            c.height_m >= p.plantMinHeight_m && c.area_px >= minArea_px &&
-            c.nearPlanes <= kMaxRemnantShare) {
+        if (unlikeLeafParts(shape, p).empty() && c.height_m >= p.plantMinHeight_m &&
+            c.area_px >= minArea_px && c.nearPlanes <= kMaxRemnantShare) {
             // A plant put before the camera is seen up to its top leaves; what goes on above
             // the view (a door's frame, a curtain, a lamp's pole) is the room's.
             if (runsOffTop(c.mask, sensed)) {

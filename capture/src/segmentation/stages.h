@@ -96,10 +96,13 @@ PartShape partShape(const cv::Mat1b& mask, float depth_m, const Intrinsics& intr
 // opening by a disc 3.5 cm across keeps that holds its lowest rows, from its bottom up to 1.3
 // times its width there, and a rim of 2 px. Frame-sized; empty where there is none.
 cv::Mat1b thickBase(const cv::Mat1b& mask, float depth_m, const Intrinsics& intrinsics);
-// How `mask`, its thick base (thickBase) taken off, differs from a plant's leaves ("made of
-// parts 7.3 cm wide (leaves: under 4 cm)"), or empty when its parts are at most
-// SegmenterParams::plantMaxMeanWidth_m thick at its median depth and its pieces, by
-// area, at least kMinLeafElongation times longer than wide.
+// How parts of `shape` differ from leaves ("made of parts 7.3 cm wide (leaves: under 4 cm)"),
+// or empty when they are at most SegmenterParams::plantMaxMeanWidth_m thick and, by area, at
+// least kMinLeafElongation times longer than wide.
+std::string unlikeLeafParts(const PartShape& shape, const SegmenterParams& params);
+// How `mask`, its thick base (thickBase) taken off, differs from a plant's leaves: "thick
+// throughout" when under a tenth of it is left, else unlikeLeafParts at its median depth; empty
+// when it looks like leaves.
 std::string unlikeLeaves(const cv::Mat1b& mask, const cv::Mat1w& depth_mm,
                          const Intrinsics& intrinsics, const SegmenterParams& params);
 
