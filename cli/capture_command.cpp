@@ -215,8 +215,8 @@ Reference: docs/cli.md (options), docs/capture.md (how it works, capturing your 
         ->group(segmentation);
     cmd->add_option(
            "--partition", args->partition,
-           "Cut blades by: contour (a fan from one base) or stem-graph (leaves off a stem; "
-           "the library then reports the stem's height)")
+           "Cut blades by: contour (a fan from one base) or stem-graph (leaves off a stem, "
+           "followed through where they cross; the library then reports the stem's height)")
         ->capture_default_str()
         ->check(CLI::IsMember(capture::kPartitionMethodNames.names()))
         ->group(segmentation);

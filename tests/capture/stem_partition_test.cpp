@@ -6,6 +6,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "meadow/capture/segmenter.h"
+#include "support/drawn_tuft.h"
 
 namespace meadow::capture {
 namespace {
@@ -68,6 +69,105 @@ TEST(StemPartition, SpursOfTheEdgeAreNoLeaves) {
     cv::circle(mask, {106, 170}, 4, 255, cv::FILLED);
     const Segmentation seg = segmentByStem(mask);
     EXPECT_EQ(seg.blades.size(), 3u) << seg.summary();
+}
+
+// A leaf that leaves the stem nearly straight on, where the stem itself bends: the leaf is the
+// smoother way on, but the stem carries the two leaves above, so the stem runs on to them and
+// the straight leaf is a leaf of its own.
+TEST(StemPartition, TheStemRunsOnToItsLeavesWhereALeafGoesOnMoreStraightly) {
+    cv::Mat1b mask = cv::Mat1b::zeros(220, 220);
+    cv::line(mask, {100, 190}, {100, 150}, 255, 9);
+    cv::line(mask, {100, 150}, {125, 105}, 255, 9);
+    const DrawnLeaf leaves[] = {
+        {{100, 150}, {90, 40}}, {{125, 105}, {160, 30}}, {{125, 105}, {195, 110}}};
+    for (const DrawnLeaf& leaf : leaves) cv::line(mask, leaf.from, leaf.tip, 255, 7);
+    const Segmentation seg = segmentByStem(mask);
+    ASSERT_EQ(seg.clusters.size(), 1u) << seg.summary();
+    const std::vector<cv::Point>& stem = seg.clusters[0].stemLine_px;
+    ASSERT_GE(stem.size(), 2u) << seg.summary();
+    EXPECT_LE(cv::norm(stem.front() - cv::Point(100, 190)), 6.0) << stem.front();
+    EXPECT_LE(cv::norm(stem.back() - cv::Point(125, 105)), 8.0) << stem.back();
+    EXPECT_EQ(seg.blades.size(), 3u) << seg.summary();
+    for (const DrawnLeaf& leaf : leaves) {
+        const auto ends = [&](const BladeContour& b) {
+            return cv::norm(b.contour_px[static_cast<std::size_t>(b.tipIndex)] - leaf.tip) <= 6.0;
+        };
+        EXPECT_EQ(std::count_if(seg.blades.begin(), seg.blades.end(), ends), 1)
+            << "one blade ends at " << leaf.tip << "\n"
+            << seg.summary();
+    }
+}
+
+// The mask and depth of drawn blades, cut by the stem.
+Segmentation segmentDrawnByStem(const drawn::Scene& scene) {
+    SegmenterParams params;
+    params.partition = PartitionMethod::StemGraph;
+    return Segmenter(params).segment(drawn::draw(scene).frame);
+}
+
+drawn::Blade straightBlade(cv::Point2f base, cv::Point2f tip, float depth_m) {
+    drawn::Blade b;
+    b.base_px = base;
+    b.tip_px = tip;
+    b.control_px = 0.5f * (base + tip);
+    b.baseWidth_px = 9.f;
+    b.tipWidth_px = 5.f;
+    b.depth_m = depth_m;
+    return b;
+}
+
+const BladeContour* bladeEndingAt(const Segmentation& s, cv::Point2f tip) {
+    for (const BladeContour& b : s.blades)
+        if (cv::norm(cv::Point2f(b.contour_px[static_cast<std::size_t>(b.tipIndex)]) - tip) <= 8.0)
+            return &b;
+    return nullptr;
+}
+
+// Two leaves standing on the ground and crossing at 50 deg close the skeleton into an X: each
+// comes out whole, from its own base over the crossing to its own tip, not cut in four.
+TEST(StemPartition, LeavesThatCrossComeOutWholeThroughTheCrossing) {
+    drawn::Scene scene;
+    scene.blades = {straightBlade({280.f, 408.f}, {360.f, 248.f}, 1.00f),
+                    straightBlade({360.f, 408.f}, {280.f, 248.f}, 1.03f)};
+    const Segmentation s = segmentDrawnByStem(scene);
+    ASSERT_EQ(s.blades.size(), 2u) << s.summary();
+    const cv::Point crossing(320, 328);
+    for (const drawn::Blade& leaf : scene.blades) {
+        const BladeContour* b = bladeEndingAt(s, leaf.tip_px);
+        ASSERT_NE(b, nullptr) << "no blade ends at " << leaf.tip_px << "\n" << s.summary();
+        // Within 20 px: the skeleton starts where the plant stands, a few pixels above the base.
+        EXPECT_LE(cv::norm(cv::Point2f(b->contour_px.front()) - leaf.base_px), 20.0)
+            << "the blade from " << leaf.tip_px << " starts at " << b->contour_px.front();
+        EXPECT_TRUE(b->covers(crossing))
+            << "the blade to " << leaf.tip_px << " runs through the crossing";
+    }
+}
+
+// A leaf (1.00 m) ends where one behind it (1.16 m) rises on in the same line, and a third
+// (1.08 m) crosses both there. Direction alone joins the first two into one leaf; their depths,
+// 160 mm apart at the junction, keep them apart, while the crossing leaf, level in depth, runs
+// through.
+TEST(StemPartition, ADepthStepAtAJunctionParts) {
+    drawn::Scene scene;
+    scene.blades = {straightBlade({320.f, 408.f}, {320.f, 300.f}, 1.00f),
+                    straightBlade({320.f, 300.f}, {320.f, 180.f}, 1.16f),
+                    straightBlade({240.f, 300.f}, {400.f, 300.f}, 1.08f)};
+    const cv::Point low(320, 380), high(320, 200);
+    const auto joined = [&](const Segmentation& s) {
+        return std::any_of(s.blades.begin(), s.blades.end(),
+                           [&](const BladeContour& b) { return b.covers(low) && b.covers(high); });
+    };
+    const drawn::Drawn d = drawn::draw(scene);
+    SegmenterParams params;
+    params.partition = PartitionMethod::StemGraph;
+    params.nearDepth_m = 0.9f;  // all three leaves in the band
+    params.farDepth_m = 1.3f;
+    const Segmentation withDepth = Segmenter(params).segment(d.frame);
+    ASSERT_FALSE(withDepth.blades.empty()) << withDepth.summary();
+    EXPECT_FALSE(joined(withDepth)) << withDepth.summary();
+    EXPECT_NE(bladeEndingAt(withDepth, scene.blades[1].tip_px), nullptr) << withDepth.summary();
+    const Segmentation shapeOnly = Segmenter(params).segmentMask(withDepth.clusterMask);
+    EXPECT_TRUE(joined(shapeOnly)) << "without depth the two are one line\n" << shapeOnly.summary();
 }
 
 }  // namespace

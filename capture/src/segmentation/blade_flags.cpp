@@ -83,7 +83,10 @@ void flagBlades(std::span<BladeContour> blades, const BladeCluster& cluster, cv:
     std::vector<float> widths;
     // Enclosed gaps of the cluster (holes the clean-up kept): the blades around them cross.
     cv::Mat1b holes(frameSize, std::uint8_t{0});
-    const bool hasHoles = std::find(cluster.flags.begin(), cluster.flags.end(),
+    // Not for the stem partition: it follows leaves through the crossings that close such gaps,
+    // and flags itself the leaves it could not follow (stem_partition.cpp).
+    const bool hasHoles = params.partition != PartitionMethod::StemGraph &&
+                          std::find(cluster.flags.begin(), cluster.flags.end(),
                                     BladeFlag::Overlapping) != cluster.flags.end();
     if (hasHoles) {
         cv::drawContours(holes, std::vector<std::vector<cv::Point>>{cluster.contour_px}, 0, 255,

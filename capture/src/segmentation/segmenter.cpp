@@ -75,6 +75,8 @@ std::string SegmenterParams::problem() const {
         {"plantMinHeight_m", plantMinHeight_m, 0.f, 10.f},
         {"plantMinImageShare", plantMinImageShare, 0.f, 1.f},
         {"minLeafBranch_px", minLeafBranch_px, 0.f, 10000.f},
+        {"crossingMaxBend_deg", crossingMaxBend_deg, 0.f, 180.f},
+        {"crossingDepthStep_mm", crossingDepthStep_mm, 0.f, 100000.f},
     };
     for (const auto& r : ranges) {
         if (!std::isfinite(r.value))
@@ -323,7 +325,8 @@ struct Segmenter::Impl {
                 const int firstId = static_cast<int>(out.blades.size()) + 1;
                 auto blades =
                     params.partition == PartitionMethod::StemGraph
-                        ? seg::partitionByStem(cluster, mask, params, firstId, out.plantBase_px, r)
+                        ? seg::partitionByStem(cluster, mask, depth_mm, params, firstId,
+                                                  out.plantBase_px, r)
                         : seg::partitionCluster(cluster, mask, depth_mm, out.edgeRaggedness, params,
                                                 firstId, r);
                 seg::flagBlades(blades, cluster, mask.size(), sensed, params, out.edgeRaggedness);

@@ -185,16 +185,18 @@ std::vector<BladeContour> partitionCluster(BladeCluster& cluster, const cv::Mat1
                                            const cv::Mat1w& depth_mm, float raggedness,
                                            const SegmenterParams& params, int firstId,
                                            StageReport& report);
-// stem_partition.cpp: PartitionMethod::StemGraph. The cluster's skeleton walked from its base
-// point; pixels with two or more tips beyond them are the stem; each tip's branch back to the
-// stem is a leaf, with the cluster pixels nearest it. Contours run from the leaf's base (where
-// it meets the stem) round its tip and back. Sets the cluster's stemLine_px.
-// `plantBase` (when known, from PlantFinding::Clusters): where the plant stands; the skeleton is
-// walked from its pixel nearest that point rather than from the cluster's lowest point, which
-// on a plant of drooping leaves is a leaf's tip.
+// stem_partition.cpp: PartitionMethod::StemGraph. The cluster's skeleton as a graph, its edges
+// joined through the junctions by the smoothest continuation in direction and, where `depth_mm`
+// holds readings (it may be empty), in depth; the strand from the plant's foot that most others
+// end on is the stem, up to the highest node a leaf leaves it at; every other strand is a leaf,
+// with the cluster pixels nearest it (both strands' at a crossing). Contours run from the leaf's
+// base (where it meets the stem) round its tip and back. Sets the cluster's stemLine_px.
+// `plantBase` (when known, from PlantFinding::Clusters): where the plant stands; the stem is
+// sought from the skeleton's pixel nearest that point rather than from the cluster's lowest
+// point, which on a plant of drooping leaves is a leaf's tip.
 std::vector<BladeContour> partitionByStem(BladeCluster& cluster, const cv::Mat1b& mask,
-                                          const SegmenterParams& params, int firstId,
-                                          const std::optional<cv::Point2f>& plantBase,
+                                          const cv::Mat1w& depth_mm, const SegmenterParams& params,
+                                          int firstId, const std::optional<cv::Point2f>& plantBase,
                                           StageReport& report);
 // fork_partition.cpp: the pixels of the fork zone (between each blade's two valleys and the base
 // point) re-decided by the blades' centre lines continued to the base and by depth. Box

@@ -1,14 +1,17 @@
-// Partition by the skeleton's tree (PartitionMethod::StemGraph): leaves leave a stem, or a tuft's
-// base, at junctions of the mask's skeleton. The skeleton is walked from the base point; a
-// skeleton pixel that two or more tips lie beyond belongs to the stem (or the shared base); each
-// tip's leaf is its branch back to where it meets the stem, and every cluster pixel goes to the
-// nearest branch or to the stem. Plant phenotyping tools cut leaves from a stem this way; Fan &
-// Sheng's contour partition assumes blades fanning from one base, which a stem breaks.
+// Partition by the skeleton's graph (PartitionMethod::StemGraph): leaves leave a stem, or a
+// tuft's base, at junctions of the mask's skeleton, and cross each other at others. The skeleton's
+// edges are joined through each junction by the smoothest continuation in direction and depth
+// (skeleton_strands.cpp), so a leaf that crosses another, or the stem, stays one strand. The
+// strand from where the plant stands that most others end on is the stem, up to the highest node
+// a leaf leaves it at; every other strand is a leaf, and every cluster pixel goes to the strand
+// its nearest skeleton pixel belongs to (both, at a crossing). Plant phenotyping tools cut leaves
+// from a stem this way; Fan & Sheng's contour partition assumes blades fanning from one base,
+// which a stem breaks.
 #include <algorithm>
-#include <deque>
 #include <opencv2/imgproc.hpp>
 #include <opencv2/ximgproc.hpp>
 
+#include "segmentation/skeleton_graph.h"
 #include "segmentation/stages.h"
 
 namespace meadow::capture::segmentation {
@@ -16,99 +19,171 @@ namespace meadow::capture::segmentation {
 namespace {
 
 constexpr int kNone = -1;
-const cv::Point kNeighbours[8] = {{-1, -1}, {0, -1}, {1, -1}, {-1, 0},
-                                  {1, 0},   {-1, 1}, {0, 1},  {1, 1}};
+constexpr int kStem = 0;  // the stem's (or a tuft's shared base's) label; leaves are 1, 2, ...
 
-struct SkeletonTree {
-    cv::Mat1i parent;        // index (y * cols + x) of the parent pixel, kNone at the root/off
-    std::vector<int> order;  // pixels in breadth-first order from the root
-    cv::Mat1b isTip;         // skeleton pixels with one skeleton neighbour
+// A leaf: its skeleton, from its base (where it leaves the stem, or its end nearest the plant's
+// foot when it meets nothing) to its tip.
+struct LeafStrand {
+    std::vector<cv::Point> path;
+    cv::Point base, tip;
+    bool endMeetsAnother = false;  // its far end meets another leaf or the stem, not free
 };
 
-int skeletonNeighbours(const cv::Mat1b& skeleton, cv::Point p) {
-    int n = 0;
-    for (const cv::Point& d : kNeighbours) {
-        const cv::Point q = p + d;
-        n += q.x >= 0 && q.y >= 0 && q.x < skeleton.cols && q.y < skeleton.rows && skeleton(q);
+LeafStrand leafOf(const SkeletonGraph& graph, const Strand& s, cv::Point2f plantFoot) {
+    LeafStrand leaf;
+    leaf.path = s.path(graph);
+    const bool startFree = graph.nodes[static_cast<std::size_t>(s.startNode)].tip;
+    const bool endFree = graph.nodes[static_cast<std::size_t>(s.endNode)].tip;
+    if (s.startNode == s.endNode) {  // a closed loop: its tip is its farthest point
+        leaf.endMeetsAnother = true;
+        leaf.base = leaf.path.front();
+        leaf.tip = *std::max_element(leaf.path.begin(), leaf.path.end(), [&](auto a, auto b) {
+            return cv::norm(a - leaf.base) < cv::norm(b - leaf.base);
+        });
+        return leaf;
     }
-    return n;
+    leaf.endMeetsAnother = !startFree && !endFree;
+    bool fromStart = !startFree && endFree;
+    if (startFree == endFree)  // both meet others, or neither: the end nearer the foot
+        fromStart = cv::norm(cv::Point2f(leaf.path.front()) - plantFoot) <=
+                    cv::norm(cv::Point2f(leaf.path.back()) - plantFoot);
+    leaf.base = fromStart ? leaf.path.front() : leaf.path.back();
+    leaf.tip = fromStart ? leaf.path.back() : leaf.path.front();
+    return leaf;
 }
 
-SkeletonTree walkFrom(const cv::Mat1b& skeleton, cv::Point root) {
-    SkeletonTree t{cv::Mat1i(skeleton.size(), kNone), {}, cv::Mat1b::zeros(skeleton.size())};
-    cv::Mat1b seen = cv::Mat1b::zeros(skeleton.size());
-    std::deque<cv::Point> queue{root};
-    seen(root) = 1;
-    while (!queue.empty()) {
-        const cv::Point p = queue.front();
-        queue.pop_front();
-        t.order.push_back(p.y * skeleton.cols + p.x);
-        if (skeletonNeighbours(skeleton, p) == 1 && p != root) t.isTip(p) = 255;
-        for (const cv::Point& d : kNeighbours) {
-            const cv::Point q = p + d;
-            if (q.x < 0 || q.y < 0 || q.x >= skeleton.cols || q.y >= skeleton.rows) continue;
-            if (!skeleton(q) || seen(q)) continue;
-            seen(q) = 1;
-            t.parent(q) = p.y * skeleton.cols + p.x;
-            queue.push_back(q);
+// The outline of a leaf's share of the region, from its base round its tip and back.
+std::optional<BladeContour> leafContour(const cv::Mat1b& leafMask, const LeafStrand& leaf,
+                                        cv::Point origin, int minContour_px) {
+    std::vector<std::vector<cv::Point>> contours;
+    cv::findContours(leafMask, contours, cv::RETR_EXTERNAL, cv::CHAIN_APPROX_NONE);
+    if (contours.empty()) return std::nullopt;
+    const auto& outline =
+        *std::max_element(contours.begin(), contours.end(),
+                          [](const auto& a, const auto& b) { return a.size() < b.size(); });
+    if (static_cast<int>(outline.size()) < minContour_px) return std::nullopt;
+    const auto nearestOn = [&](cv::Point p) {
+        return static_cast<int>(std::min_element(outline.begin(), outline.end(),
+                                                 [&](cv::Point a, cv::Point b) {
+                                                     return cv::norm(a - p) < cv::norm(b - p);
+                                                 }) -
+                                outline.begin());
+    };
+    const int n = static_cast<int>(outline.size());
+    const int baseAt = nearestOn(leaf.base);
+    const int tipAt = nearestOn(leaf.tip);
+    BladeContour blade;
+    blade.contour_px.reserve(outline.size());
+    for (int s = 0; s < n; ++s) blade.contour_px.push_back(outline[(baseAt + s) % n] + origin);
+    blade.tipIndex = ((tipAt - baseAt) % n + n) % n;
+    // The leaf's own pixels: the part of its share the outline encloses.
+    cv::Mat1b own(leafMask.size(), std::uint8_t{0});
+    cv::drawContours(own, std::vector<std::vector<cv::Point>>{outline}, 0, 255, cv::FILLED);
+    own &= leafMask;
+    const cv::Rect ownBox = cv::boundingRect(own);
+    blade.mask = own(ownBox).clone();
+    blade.maskOrigin_px = origin + ownBox.tl();
+    return blade;
+}
+
+// Each skeleton pixel's owners (labels: kStem, or a leaf's): its edge's strand's; a junction
+// belongs to the strands that run through it (two at a crossing), else to the stem or shared
+// base. A kink's pixel that its path stepped past takes its neighbour's owners.
+struct SkeletonOwners {
+    cv::Mat1i first, second;  // second: kNone but at crossings
+};
+
+SkeletonOwners ownersOnSkeleton(const SkeletonGraph& graph, const Strands& strands,
+                                const std::vector<bool>& isStem,
+                                const std::vector<int>& labelOfStrand,
+                                const std::vector<cv::Point>& onSkeleton, cv::Size size) {
+    SkeletonOwners o{cv::Mat1i(size, kNone), cv::Mat1i(size, kNone)};
+    const auto labelOfEdge = [&](int e) {
+        return labelOfStrand[static_cast<std::size_t>(
+            strands.strandOfEdge[static_cast<std::size_t>(e)])];
+    };
+    for (std::size_t e = 0; e < graph.edges.size(); ++e)
+        for (const cv::Point& p : graph.edges[e].pixels)
+            o.first(p) = labelOfEdge(static_cast<int>(e));
+    for (std::size_t n = 0; n < graph.nodes.size(); ++n) {
+        const SkeletonNode& node = graph.nodes[n];
+        std::vector<int> owners;
+        if (node.tip && !node.ends.empty()) owners.push_back(labelOfEdge(node.ends.front() / 2));
+        for (std::size_t i = 0; i < strands.strands.size(); ++i) {
+            const Strand& s = strands.strands[i];
+            const int here = static_cast<int>(n);
+            const bool stemEnd = isStem[i] && (s.endNode == here || s.startNode == here);
+            if (stemEnd || std::find(s.through.begin(), s.through.end(), here) != s.through.end())
+                if (std::find(owners.begin(), owners.end(), labelOfStrand[i]) == owners.end())
+                    owners.push_back(labelOfStrand[i]);
+        }
+        if (owners.empty() && node.root && node.ends.size() == 1)  // a leaf standing alone
+            owners.push_back(labelOfEdge(node.ends.front() / 2));
+        for (const cv::Point& p : node.pixels) {
+            o.first(p) = owners.empty() ? kStem : owners[0];
+            o.second(p) = owners.size() > 1 ? owners[1] : kNone;
         }
     }
-    return t;
-}
-
-// Tips beyond each pixel (its subtree's), counting only the tips set in `tips`.
-cv::Mat1i tipsBeyond(const SkeletonTree& t, const cv::Mat1b& tips) {
-    cv::Mat1i count(t.parent.size(), 0);
-    const int cols = t.parent.cols;
-    for (auto it = t.order.rbegin(); it != t.order.rend(); ++it) {
-        const cv::Point p(*it % cols, *it / cols);
-        if (tips(p)) count(p) += 1;
-        if (const int up = t.parent(p); up != kNone) count(up / cols, up % cols) += count(p);
-    }
-    return count;
-}
-
-// The branch from `tip` back to (not including) the first pixel with two or more tips beyond
-// it, which is returned as `base` (the root when there is none).
-std::vector<cv::Point> branchOf(const SkeletonTree& t, const cv::Mat1i& beyond, cv::Point tip,
-                                cv::Point& base) {
-    std::vector<cv::Point> branch;
-    const int cols = t.parent.cols;
-    cv::Point p = tip;
-    while (true) {
-        if (beyond(p) >= 2) {
-            base = p;
-            return branch;
+    const cv::Rect inside({}, size);
+    for (bool again = true; again;) {
+        again = false;
+        for (const cv::Point& p : onSkeleton) {
+            if (o.first(p) != kNone) continue;
+            for (int dy = -1; dy <= 1 && o.first(p) == kNone; ++dy)
+                for (int dx = -1; dx <= 1 && o.first(p) == kNone; ++dx) {
+                    const cv::Point q = p + cv::Point(dx, dy);
+                    if (!inside.contains(q) || o.first(q) == kNone) continue;
+                    o.first(p) = o.first(q);
+                    o.second(p) = o.second(q);
+                    again = true;
+                }
         }
-        branch.push_back(p);
-        const int up = t.parent(p);
-        if (up == kNone) {
-            base = p;
-            return branch;
-        }
-        p = {up % cols, up / cols};
     }
+    for (const cv::Point& p : onSkeleton)
+        if (o.first(p) == kNone) o.first(p) = kStem;
+    return o;
 }
 
-// The stem's skeleton from the root to its pixel farthest along the tree (the highest node a
-// leaf leaves at), offset by `origin`; empty when no pixel has two tips beyond it.
-std::vector<cv::Point> stemLine(const SkeletonTree& t, const cv::Mat1i& beyond, cv::Point origin) {
-    const int cols = t.parent.cols;
-    int top = kNone;
-    for (const int i : t.order)  // breadth first: the last stem pixel is the farthest
-        if (beyond(i / cols, i % cols) >= 2) top = i;
-    std::vector<cv::Point> line;
-    for (int i = top; i != kNone; i = t.parent(i / cols, i % cols))
-        line.push_back(cv::Point(i % cols, i / cols) + origin);
-    std::reverse(line.begin(), line.end());
-    return line;
+// Every region pixel goes to the owners of its nearest skeleton pixel: one mask per label
+// (index 0, the stem's, stays empty; its pixels are counted in `stemPixels`).
+std::vector<cv::Mat1b> sharesOfRegion(const cv::Mat1b& region, const cv::Mat1b& skeleton,
+                                      const std::vector<cv::Point>& onSkeleton,
+                                      const SkeletonOwners& owners, std::size_t leaves,
+                                      int& stemPixels) {
+    cv::Mat1f distance;
+    cv::Mat1i nearest;
+    cv::distanceTransform(~skeleton, distance, nearest, cv::DIST_L2, cv::DIST_MASK_5,
+                          cv::DIST_LABEL_PIXEL);
+    std::vector<cv::Point> sourceAt(onSkeleton.size() + 1);
+    for (const cv::Point& p : onSkeleton) sourceAt[static_cast<std::size_t>(nearest(p))] = p;
+    std::vector<cv::Mat1b> masks(leaves + 1);
+    for (auto& m : masks) m = cv::Mat1b::zeros(region.size());
+    stemPixels = 0;
+    for (int y = 0; y < region.rows; ++y)
+        for (int x = 0; x < region.cols; ++x) {
+            if (!region(y, x)) continue;
+            const cv::Point s = sourceAt[static_cast<std::size_t>(nearest(y, x))];
+            for (const int label : {owners.first(s), owners.second(s)})
+                if (label > kStem) masks[static_cast<std::size_t>(label)](y, x) = 255;
+            stemPixels += owners.first(s) == kStem;
+        }
+    return masks;
+}
+
+// Nodes two or more strands run through.
+int crossingsFollowed(const SkeletonGraph& graph, const Strands& strands) {
+    std::vector<int> through(graph.nodes.size(), 0);
+    for (const Strand& s : strands.strands)
+        for (const int n : s.through) ++through[static_cast<std::size_t>(n)];
+    return static_cast<int>(
+        std::count_if(through.begin(), through.end(), [](int t) { return t >= 2; }));
 }
 
 }  // namespace
 
 std::vector<BladeContour> partitionByStem(BladeCluster& cluster, const cv::Mat1b& mask,
-                                          const SegmenterParams& params, int firstId,
-                                          const std::optional<cv::Point2f>& plantBase,
+                                          const cv::Mat1w& depth_mm, const SegmenterParams& params,
+                                          int firstId, const std::optional<cv::Point2f>& plantBase,
                                           StageReport& report) {
     const cv::Rect box = cv::boundingRect(cluster.contour_px);
     cv::Mat1b region(box.size(), std::uint8_t{0});
@@ -122,112 +197,77 @@ std::vector<BladeContour> partitionByStem(BladeCluster& cluster, const cv::Mat1b
     if (onSkeleton.empty()) return {};
 
     // The root: the skeleton pixel nearest where the plant stands, or the cluster's base point.
-    const cv::Point2f basePoint = plantBase.value_or(cluster.basePoint_px) - cv::Point2f(box.tl());
+    const cv::Point2f foot = plantBase.value_or(cluster.basePoint_px) - cv::Point2f(box.tl());
     const cv::Point root = *std::min_element(
         onSkeleton.begin(), onSkeleton.end(), [&](const cv::Point& a, const cv::Point& b) {
-            return cv::norm(cv::Point2f(a) - basePoint) < cv::norm(cv::Point2f(b) - basePoint);
+            return cv::norm(cv::Point2f(a) - foot) < cv::norm(cv::Point2f(b) - foot);
         });
-    const SkeletonTree tree = walkFrom(skeleton, root);
+    // Spurs of the skeleton (a bump in the edge) are not leaves.
+    const int spurs = removeSpurs(skeleton, root, params.minLeafBranch_px);
+    cv::findNonZero(skeleton, onSkeleton);
+    cv::Mat1f halfWidth;
+    cv::distanceTransform(region, halfWidth, cv::DIST_L2, cv::DIST_MASK_5);
+    SkeletonGraph graph = skeletonGraph(skeleton, root);
+    mergeCloseJunctions(graph, halfWidth);
+    const cv::Mat1w depth = depth_mm.empty() ? cv::Mat1w() : cv::Mat1w(depth_mm(box));
+    Strands strands = followStrands(graph, halfWidth, depth,
+                                    {params.crossingMaxBend_deg, params.crossingDepthStep_mm});
 
-    // Spurs of the skeleton (a bump in the edge) are not leaves: a tip whose branch is shorter
-    // than minLeafBranch_px is dropped, and the branches are found again without it.
-    cv::Mat1b tips = tree.isTip.clone();
-    cv::Mat1i beyond = tipsBeyond(tree, tips);
-    std::vector<cv::Point> tipPixels;
-    cv::findNonZero(tips, tipPixels);
-    int spurs = 0;
-    for (const cv::Point& tip : tipPixels) {
-        cv::Point base;
-        if (static_cast<float>(branchOf(tree, beyond, tip, base).size()) <
-            params.minLeafBranch_px) {
-            tips(tip) = 0;
-            ++spurs;
+    // The stem, and the leaves: every other strand long enough to be more than a spur.
+    const std::vector<int> stem = followStem(graph, strands);
+    std::vector<bool> isStem(strands.strands.size(), false);
+    for (const int i : stem) isStem[static_cast<std::size_t>(i)] = true;
+    std::vector<int> labelOfStrand(strands.strands.size(), kStem);
+    std::vector<LeafStrand> leaves;
+    int belowFoot = 0;
+    float footRow = foot.y;  // the foot's row, or the root's top where that is higher
+    if (graph.rootNode != -1)
+        for (const cv::Point& p : graph.nodes[static_cast<std::size_t>(graph.rootNode)].pixels)
+            footRow = std::min(footRow, static_cast<float>(p.y));
+    for (std::size_t i = 0; i < strands.strands.size(); ++i) {
+        if (isStem[i]) continue;
+        LeafStrand leaf = leafOf(graph, strands.strands[i], foot);
+        if (static_cast<float>(leaf.path.size()) < params.minLeafBranch_px) continue;
+        // Where the plant stands is known (the top of its pot): what lies wholly below it is
+        // the pot's rim or the ground, not a leaf; leaves leave the stem above it.
+        if (plantBase && std::all_of(leaf.path.begin(), leaf.path.end(),
+                                     [&](cv::Point p) { return p.y >= footRow; })) {
+            ++belowFoot;
+            continue;
         }
-    }
-    beyond = tipsBeyond(tree, tips);
-    cv::findNonZero(tips, tipPixels);
-
-    // Label the branches on the skeleton (the stem keeps label 0 in `branchLabel`, and is
-    // marked in `stem`), then give every region pixel the label of its nearest skeleton pixel.
-    cv::Mat1i branchLabel(box.size(), 0);
-    cv::Mat1b stem(box.size(), std::uint8_t{0});
-    for (const cv::Point& p : onSkeleton)
-        if (beyond(p) >= 2) stem(p) = 255;
-    cluster.stemLine_px = stemLine(tree, beyond, box.tl());
-    struct Leaf {
-        cv::Point tip, base;
-        std::vector<cv::Point> branch;
-    };
-    std::vector<Leaf> leaves;
-    for (const cv::Point& tip : tipPixels) {
-        Leaf leaf{tip, {}, {}};
-        leaf.branch = branchOf(tree, beyond, tip, leaf.base);
-        for (const cv::Point& p : leaf.branch) branchLabel(p) = static_cast<int>(leaves.size()) + 1;
         leaves.push_back(std::move(leaf));
+        labelOfStrand[i] = static_cast<int>(leaves.size());
     }
-    cv::Mat1b sources = (branchLabel > 0) | stem;
-    cv::Mat1f distance;
-    cv::Mat1i nearest;
-    cv::distanceTransform(~sources, distance, nearest, cv::DIST_L2, cv::DIST_MASK_5,
-                          cv::DIST_LABEL_PIXEL);
-    // distanceTransform numbers the source pixels; map each number to its branch (0 = stem).
-    std::vector<cv::Point> sourcePixels;
-    cv::findNonZero(sources, sourcePixels);
-    std::vector<int> labelOf(sourcePixels.size() + 1, 0);
-    for (const cv::Point& p : sourcePixels)
-        labelOf[static_cast<std::size_t>(nearest(p))] = branchLabel(p);
+    cluster.stemLine_px.clear();
+    for (const int i : stem)
+        for (const cv::Point& p : strands.strands[static_cast<std::size_t>(i)].path(graph))
+            cluster.stemLine_px.push_back(p + box.tl());
+
+    const SkeletonOwners owners =
+        ownersOnSkeleton(graph, strands, isStem, labelOfStrand, onSkeleton, box.size());
+    int stemPixels = 0;
+    const std::vector<cv::Mat1b> leafMasks =
+        sharesOfRegion(region, skeleton, onSkeleton, owners, leaves.size(), stemPixels);
 
     std::vector<BladeContour> blades;
-    int stemPixels = 0;
     for (std::size_t i = 0; i < leaves.size(); ++i) {
-        cv::Mat1b leafMask(box.size(), std::uint8_t{0});
-        for (int y = 0; y < region.rows; ++y)
-            for (int x = 0; x < region.cols; ++x)
-                if (region(y, x) &&
-                    labelOf[static_cast<std::size_t>(nearest(y, x))] == static_cast<int>(i) + 1)
-                    leafMask(y, x) = 255;
-        std::vector<std::vector<cv::Point>> contours;
-        cv::findContours(leafMask, contours, cv::RETR_EXTERNAL, cv::CHAIN_APPROX_NONE);
-        if (contours.empty()) continue;
-        const auto& outline =
-            *std::max_element(contours.begin(), contours.end(),
-                              [](const auto& a, const auto& b) { return a.size() < b.size(); });
-        if (static_cast<int>(outline.size()) < params.minBladeContour_px) continue;
-        const auto nearestOn = [&](cv::Point p) {
-            int best = 0;
-            double bestD = 1e18;
-            for (std::size_t k = 0; k < outline.size(); ++k) {
-                const double d = cv::norm(outline[k] - p);
-                if (d < bestD) bestD = d, best = static_cast<int>(k);
-            }
-            return best;
-        };
-        const int n = static_cast<int>(outline.size());
-        const int baseAt = nearestOn(leaves[i].base);
-        const int tipAt = nearestOn(leaves[i].tip);
-        BladeContour blade;
-        blade.id = firstId + static_cast<int>(blades.size());
-        blade.contour_px.reserve(outline.size());
-        for (int s = 0; s < n; ++s)
-            blade.contour_px.push_back(outline[(baseAt + s) % n] + box.tl());
-        blade.tipIndex = ((tipAt - baseAt) % n + n) % n;
-        // The leaf's own pixels: the part of its share the outline encloses.
-        cv::Mat1b own(box.size(), std::uint8_t{0});
-        cv::drawContours(own, std::vector<std::vector<cv::Point>>{outline}, 0, 255, cv::FILLED);
-        own &= leafMask;
-        const cv::Rect ownBox = cv::boundingRect(own);
-        blade.mask = own(ownBox).clone();
-        blade.maskOrigin_px = box.tl() + ownBox.tl();
-        blades.push_back(std::move(blade));
+        auto blade = leafContour(leafMasks[i + 1], leaves[i], box.tl(), params.minBladeContour_px);
+        if (!blade) continue;
+        blade->id = firstId + static_cast<int>(blades.size());
+        if (leaves[i].endMeetsAnother)
+            addFlag(*blade, BladeFlag::Overlapping,
+                    "its far end meets another leaf or the stem where no leaf runs on smoothly: "
+                    "its tip is hidden there, or it runs on under another leaf");
+        blades.push_back(std::move(*blade));
     }
-    for (int y = 0; y < region.rows; ++y)
-        for (int x = 0; x < region.cols; ++x)
-            stemPixels += region(y, x) && labelOf[static_cast<std::size_t>(nearest(y, x))] == 0;
+    const int crossings = crossingsFollowed(graph, strands);
     report.notes.push_back(
         "cluster of " + std::to_string(cluster.area_px) + " px: " + std::to_string(blades.size()) +
         " leaf/leaves cut from a stem of " + std::to_string(stemPixels) + " px; " +
-        std::to_string(spurs) + " skeleton spur(s) under " +
-        std::to_string(static_cast<int>(params.minLeafBranch_px)) + " px dropped");
+        std::to_string(crossings) + " crossing(s) followed through; " + std::to_string(belowFoot) +
+        " branch(es) wholly below the plant's foot (pot) left out; " + std::to_string(spurs) +
+        " skeleton spur(s) under " + std::to_string(static_cast<int>(params.minLeafBranch_px)) +
+        " px dropped");
     cluster.cutIndices.clear();
     cluster.reference_px = cv::Point2f(root + box.tl());
     return blades;

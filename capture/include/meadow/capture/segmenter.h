@@ -212,6 +212,12 @@ struct SegmenterParams {
     // StemGraph: a skeleton branch shorter than this from its tip to the stem is a spur of the
     // edge, not a leaf (docs/capture.md#partition-by-the-stem).
     float minLeafBranch_px = 15.0f;
+    // StemGraph: at a junction of the skeleton an edge continues the one it turns least from,
+    // if it turns less than crossingMaxBend_deg and, where both have readings, their depths
+    // carried to the junction differ by less than crossingDepthStep_mm: a leaf crossing another
+    // or the stem stays one leaf (docs/capture.md#partition-by-the-stem).
+    float crossingMaxBend_deg = 45.0f;
+    float crossingDepthStep_mm = 100.0f;
     ReferencePoint reference = ReferencePoint::BasePoint;
     float baseBandFraction = 0.05f;  // BasePoint: lowest share of the cluster's height used
     float smoothingSigma_px = 2.0f;  // Gaussian along the contour, in contour samples
