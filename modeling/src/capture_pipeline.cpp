@@ -5,8 +5,8 @@
 
 #include "meadow/modeling/archetype_merge.h"
 #include "meadow/modeling/blade_observations.h"
-#include "meadow/modeling/stem_height.h"
 #include "meadow/modeling/error.h"
+#include "meadow/modeling/stem_height.h"
 
 namespace meadow::modeling {
 

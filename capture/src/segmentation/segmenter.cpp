@@ -323,12 +323,11 @@ struct Segmenter::Impl {
         stage(out, "partition", nullptr, [&](StageReport& r) {
             for (auto& cluster : out.clusters) {
                 const int firstId = static_cast<int>(out.blades.size()) + 1;
-                auto blades =
-                    params.partition == PartitionMethod::StemGraph
-                        ? seg::partitionByStem(cluster, mask, depth_mm, params, firstId,
-                                                  out.plantBase_px, r)
-                        : seg::partitionCluster(cluster, mask, depth_mm, out.edgeRaggedness, params,
-                                                firstId, r);
+                auto blades = params.partition == PartitionMethod::StemGraph
+                                  ? seg::partitionByStem(cluster, mask, depth_mm, params, firstId,
+                                                         out.plantBase_px, r)
+                                  : seg::partitionCluster(cluster, mask, depth_mm,
+                                                          out.edgeRaggedness, params, firstId, r);
                 seg::flagBlades(blades, cluster, mask.size(), sensed, params, out.edgeRaggedness);
                 for (auto& b : blades) {
                     const auto tip = static_cast<size_t>(b.tipIndex);
