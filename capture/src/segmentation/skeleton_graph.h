@@ -63,7 +63,6 @@ struct Strand {
 struct Strands {
     std::vector<Strand> strands;
     std::vector<int> strandOfEdge;  // per edge
-    int joins = 0;                  // pairs of edges joined at junctions (degree-2 nodes too)
 };
 
 // Joins, at every junction but the root, the pairs of edges that continue each other most

@@ -128,7 +128,7 @@ std::vector<int> followStem(const SkeletonGraph& graph, Strands& strands) {
             turned = true;
         }
     }
-    // The top: the stem ends at the highest node another strand ends at; above it, a leaf.
+    // The top: the stem ends at the highest node another strand meets; above it, a leaf.
     const Strand& top = strands.strands[static_cast<std::size_t>(current)];
     const std::size_t edges = top.edges.size();
     const bool endCarries = !graph.nodes[static_cast<std::size_t>(top.endNode)].tip &&

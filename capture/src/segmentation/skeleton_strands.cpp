@@ -126,7 +126,6 @@ Strands followStrands(const SkeletonGraph& graph, const cv::Mat1f& halfWidth_px,
         if (node.ends.size() == 2) {  // no choice: a path through a junction's leftover pixel
             partner[static_cast<std::size_t>(node.ends[0])] = node.ends[1];
             partner[static_cast<std::size_t>(node.ends[1])] = node.ends[0];
-            ++out.joins;
             continue;
         }
         std::vector<Departure> leaving;
@@ -154,7 +153,6 @@ Strands followStrands(const SkeletonGraph& graph, const cv::Mat1f& halfWidth_px,
             taken[c.a] = taken[c.b] = true;
             partner[static_cast<std::size_t>(node.ends[c.a])] = node.ends[c.b];
             partner[static_cast<std::size_t>(node.ends[c.b])] = node.ends[c.a];
-            ++out.joins;
         }
     }
 

@@ -221,7 +221,7 @@ std::vector<BladeContour> partitionByStem(BladeCluster& cluster, const cv::Mat1b
     std::vector<LeafStrand> leaves;
     int belowFoot = 0;
     float footRow = foot.y;  // the foot's row, or the root's top where that is higher
-    if (graph.rootNode != -1)
+    if (graph.rootNode != kNone)
         for (const cv::Point& p : graph.nodes[static_cast<std::size_t>(graph.rootNode)].pixels)
             footRow = std::min(footRow, static_cast<float>(p.y));
     for (std::size_t i = 0; i < strands.strands.size(); ++i) {
