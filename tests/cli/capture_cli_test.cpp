@@ -297,7 +297,8 @@ TEST(CaptureCli, TwelveFramesFusedByRecurringReadingsAreOneSegmentation) {
 }
 
 // The shared real scenes hold no plant (a room seen by a Kinect, an office in the TUM frame):
-// capture says so in one line, exits 2 and writes no library, also with --keep-flagged.
+// capture says so in one line, exits 2 and writes no library, also with --keep-flagged, by the
+// depth band and by the clusters finder.
 TEST(CaptureCli, RealScenesWithoutAPlantSayNoPlantInOneLine) {
     const fs::path oni = meadow::test::realOniRecording();
     const fs::path tumFrame = meadow::test::sharedDataDir() / "real/tum-frame/TUM_depth.png";
@@ -309,7 +310,8 @@ TEST(CaptureCli, RealScenesWithoutAPlantSayNoPlantInOneLine) {
     const std::string tum =
         (dir / "tum").string() + " --intrinsics 525,525,319.5,239.5 --depth-unit 0.2mm";
     for (const std::string& source : {oni.string(), tum})
-        for (const char* keep : {"", " --keep-flagged"}) {
+        for (const char* keep :
+             {"", " --keep-flagged", " --find-plant clusters --partition stem-graph"}) {
             const fs::path out = dir / "lib.json";
             const auto r = runMeadow("capture " + source + keep + " --out " + out.string());
             EXPECT_EQ(r.exitCode, 2) << source << keep << ": " << r.output;

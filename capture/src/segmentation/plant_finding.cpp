@@ -54,6 +54,13 @@ float planeTolerance_m(float base_m, float z_m) {
     return base_m + kPlaneToleranceGrowth_per_m * z_m * z_m;
 }
 
+// Which planes can bear a plant: the camera is held upright (its roll under 30 deg) and looks
+// level or down (README, "Place the camera"), so a floor's, table top's or the ground's normal,
+// turned towards the camera, leans sideways at most sin 30 deg and does not point down the
+// image (beyond sin 6 deg: a camera tilted a little up). Walls beside the camera do not bear.
+constexpr float kMaxBearingSideLean = 0.5f;
+constexpr float kMaxBearingDownLean = 0.1f;
+
 struct Sample {
     cv::Point px;
     pcl::PointXYZ p;
@@ -109,6 +116,15 @@ using ScenePlane = std::array<float, 4>;  // n.x + d = 0
 
 float planeDistance_m(const ScenePlane& c, const glm::vec3& v) {
     return std::abs(c[0] * v.x + c[1] * v.y + c[2] * v.z + c[3]);
+}
+
+// A floor, table top or the ground, not a wall beside the camera or a ceiling: see
+// kMaxBearingSideLean. Image y runs down; the normal is turned to the camera's side (d > 0).
+// (A wall ahead of a level camera passes too: it cannot be told from the ground below one that
+// looks straight down.)
+bool bearsThings(const ScenePlane& c) {
+    const float towardsCamera = c[3] >= 0.f ? 1.f : -1.f;
+    return towardsCamera * c[1] <= kMaxBearingDownLean && std::abs(c[0]) <= kMaxBearingSideLean;
 }
 
 // Removes the room's large planes from `rest` (every pixel within the tolerance of one);
@@ -338,6 +354,11 @@ FoundPlant findPlant(const cv::Mat1w& depth_mm, const Intrinsics& k, const Segme
     std::vector<std::size_t> thin;
     const SensedExtent sensed = SensedExtent::of(depth_mm);
     int offTop = 0;  // thin and large enough, but running off the top of the view
+    // A plant stands on a floor, a table top or the ground, and the guide keeps its base in
+    // view. With none in view, what is thin and long is a strip of the room (a curtain's edge
+    // against the far wall, a shelf's), or the camera looks where no foot can be found.
+    const bool bearingInView = std::any_of(planes.begin(), planes.end(), bearsThings);
+    int unborne = 0;  // thin and large enough, but nothing in view to stand on
     for (std::size_t i = 0; i < clusters.size(); ++i) {
         Cluster& c = clusters[i];
         // A pot, a box on the floor, a chair's seat: what stands thick on its bottom goes first,
@@ -355,6 +376,10 @@ FoundPlant findPlant(const cv::Mat1w& depth_mm, const Intrinsics& k, const Segme
             // the view (a door's frame, a curtain, a lamp's pole) is the room's.
             if (runsOffTop(c.mask, sensed)) {
                 ++offTop;
+                continue;
+            }
+            if (!bearingInView) {
+                ++unborne;
                 continue;
             }
             thin.push_back(i);
@@ -376,6 +401,10 @@ FoundPlant findPlant(const cv::Mat1w& depth_mm, const Intrinsics& k, const Segme
         if (offTop > 0)
             why << "; " << offTop << " that run(s) off the top of the view (a plant too near "
                 << "the camera, or a pole or frame of the room)";
+        if (unborne > 0)
+            why << "; " << unborne
+                << " thin enough, but no floor, table top or ground in view (a plant "
+                << "stands on one: keep it in view, the camera upright)";
         plant.whyNot = why.str();
         return plant;
     }

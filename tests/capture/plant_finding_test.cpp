@@ -1,0 +1,93 @@
+// The clusters finder (PlantFinding::Clusters) on scenes ray-cast from a few planes and one
+// leaf-like strip: a plant stands on a floor, a table top or the ground; a thin strip with
+// only walls beside the camera around it (a curtain's edge in a room) is not a plant.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+#include <optional>
+#include <vector>
+
+#include "meadow/capture/segmenter.h"
+
+namespace meadow::capture {
+namespace {
+
+struct Plane {
+    float nx, ny, nz, d;  // n.p + d = 0, camera space, metres
+};
+
+// An upright rectangle facing the camera at depth z: a leaf seen flat, 2 cm wide.
+struct Strip {
+    float x0, x1, y0, y1, z;
+};
+
+constexpr float kMaxRange_m = 4.f;
+
+cv::Mat1w castScene(const Intrinsics& k, const std::vector<Plane>& planes,
+                    const std::optional<Strip>& strip) {
+    cv::Mat1w depth = cv::Mat1w::zeros(k.height_px, k.width_px);
+    for (int y = 0; y < k.height_px; ++y)
+        for (int x = 0; x < k.width_px; ++x) {
+            // The ray through the pixel, scaled so that its z is 1: its t is the depth.
+            const float dx = (static_cast<float>(x) - k.cx_px) / k.fx_px;
+            const float dy = (static_cast<float>(y) - k.cy_px) / k.fy_px;
+            float nearest = std::numeric_limits<float>::max();
+            for (const Plane& p : planes) {
+                const float along = p.nx * dx + p.ny * dy + p.nz;
+                if (std::abs(along) < 1e-6f) continue;
+                const float t = -p.d / along;
+                if (t > 0.f) nearest = std::min(nearest, t);
+            }
+            if (strip) {
+                const float t = strip->z, px = dx * t, py = dy * t;
+                if (px >= strip->x0 && px <= strip->x1 && py >= strip->y0 && py <= strip->y1)
+                    nearest = std::min(nearest, t);
+            }
+            if (nearest <= kMaxRange_m) depth(y, x) = static_cast<std::uint16_t>(nearest * 1000);
+        }
+    return depth;
+}
+
+Segmentation findIn(const cv::Mat1w& depth) {
+    SegmenterParams params;
+    params.plantFinding = PlantFinding::Clusters;
+    DepthFrame frame;
+    frame.depth_mm = depth;
+    frame.intrinsics = Intrinsics::kinectV1();
+    return Segmenter(params).segment(frame);
+}
+
+// A level camera 0.3 m above the floor, a wall 2.5 m ahead; the strip 50 cm tall at 1 m.
+constexpr Plane kFloor{0.f, -1.f, 0.f, 0.3f};
+constexpr Plane kWallAhead{0.f, 0.f, -1.f, 2.5f};
+constexpr Strip kLeaf{-0.01f, 0.01f, -0.2f, 0.3f, 1.f};
+
+TEST(PlantFindingScenes, AThinStripStandingOnTheFloorIsAPlant) {
+    const Segmentation seg = findIn(castScene(Intrinsics::kinectV1(), {kFloor, kWallAhead}, kLeaf));
+    EXPECT_FALSE(seg.noPlant) << seg.noBladesReason;
+}
+
+// The same strip between two walls beside the camera (a room's corner seen from its middle),
+// no floor in view: what is thin there is the room's, and the reason says what was missing.
+TEST(PlantFindingScenes, AThinStripWithOnlyWallsBesideItIsNoPlant) {
+    // They meet 3 m ahead; each passes 1 m beside the camera.
+    const Plane left{0.949f, 0.f, -0.316f, 0.949f}, right{-0.949f, 0.f, -0.316f, 0.949f};
+    const Intrinsics k = Intrinsics::kinectV1();
+    const Segmentation seg = findIn(castScene(k, {left, right}, kLeaf));
+    EXPECT_TRUE(seg.noPlant);
+    EXPECT_NE(seg.noBladesReason.find("no floor, table top or ground in view"), std::string::npos)
+        << seg.noBladesReason;
+    // The walls alone are no plant either, for the usual reason.
+    EXPECT_TRUE(findIn(castScene(k, {left, right}, std::nullopt)).noPlant);
+}
+
+// Grass seen from straight above stands on the ground, which faces the camera.
+TEST(PlantFindingScenes, AThinStripBeforeTheGroundSeenFromAboveIsAPlant) {
+    const Plane groundBelow{0.f, 0.f, -1.f, 1.2f};
+    const Segmentation seg = findIn(castScene(Intrinsics::kinectV1(), {groundBelow}, kLeaf));
+    EXPECT_FALSE(seg.noPlant) << seg.noBladesReason;
+}
+
+}  // namespace
+}  // namespace meadow::capture
