@@ -42,6 +42,14 @@ float medianOf(std::vector<float> v) {
 
 }  // namespace
 
+bool leavesAStem(const capture::Segmentation& segmentation, int bladeId) {
+    return std::any_of(
+        segmentation.clusters.begin(), segmentation.clusters.end(), [&](const auto& c) {
+            return !c.stemLine_px.empty() &&
+                   std::find(c.bladeIds.begin(), c.bladeIds.end(), bladeId) != c.bladeIds.end();
+        });
+}
+
 std::optional<ClusterBase> clusterBase(const capture::Segmentation& segmentation, int bladeId,
                                        const capture::DepthFrame& frame, const RootParams& params) {
     const auto cluster = std::find_if(
@@ -212,7 +220,9 @@ Skeleton segmentedBladeSkeleton(const capture::Segmentation& segmentation, std::
         }
         extendSkeletonTip(skeleton, tip);
     }
-    if (params.root.enabled) {
+    // A leaf cut where it leaves a stem (PartitionMethod::StemGraph) starts at its own base: its
+    // length runs along it, not down the stem to the plant's foot.
+    if (params.root.enabled && !leavesAStem(segmentation, blade.id)) {
         if (const auto base = clusterBase(segmentation, blade.id, frame, params.root)) {
             rootSkeleton(skeleton, *base, params.root);
         } else {

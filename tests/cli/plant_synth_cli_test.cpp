@@ -54,7 +54,9 @@ TEST(PlantSynthCli, AMadePlantBecomesATurntableRecordingWithItsTruth) {
 
 // The made plant's leaves leave its stem at 5 and 10 cm: captured with the stem-graph partition,
 // the library's stem runs from its foot to the higher node, 10 cm, within the pot's rim and a
-// few pixels (3 cm), and capture prints it.
+// few pixels (3 cm), and capture prints it. Each leaf starts where it leaves the stem: none is
+// continued down the stem to the foot, so no archetype is longer than the longer leaf (with
+// a 10 % margin; rooted at the foot, they reach 1.2-1.3 times it).
 TEST(PlantSynthCli, AMadePlantsStemHeightIsInTheLibrary) {
     const fs::path dir = freshTempDir("plant_stem");
     const fs::path plant = meadow::test::writeMadePlant(dir / "made.txt");
@@ -72,6 +74,10 @@ TEST(PlantSynthCli, AMadePlantsStemHeightIsInTheLibrary) {
     ASSERT_TRUE(library.stem);
     EXPECT_NEAR(library.stem->height_m, meadow::test::kMadeLeaves[1].attach_m, 0.03f);
     EXPECT_GE(library.stem->views, 1);
+    const float longest = meadow::test::kMadeLeaves[0].length_m();
+    ASSERT_FALSE(library.archetypes.empty());
+    for (const auto& archetype : library.archetypes)
+        EXPECT_LE(archetype.height_m(), 1.1f * longest) << archetype.name;
 }
 
 // A turntable recording of a real maize shoot (12 views 30 deg apart) given to capture as one

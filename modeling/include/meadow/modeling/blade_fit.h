@@ -166,7 +166,8 @@ BladeFit fitBlade(const capture::BladeContour& blade, const capture::DepthFrame&
 // The skeleton of segmentation.blades[bladeIndex] as capture fits it: extractSkeleton, then, when
 // params.tip.enabled, extendSkeletonTip (blade_tip.h), then, when params.root.enabled,
 // rootSkeleton at its cluster's base (blade_root.h; a blade whose base cannot be found or is
-// refused stays unrooted, with Skeleton::baseNotRooted set and a reason). Throws ModelingError
+// refused stays unrooted, with Skeleton::baseNotRooted set and a reason; a leaf that leaves a
+// stem, leavesAStem, starts at its own base and is not rooted). Throws ModelingError
 // when the blade has no valid depth.
 Skeleton segmentedBladeSkeleton(const capture::Segmentation& segmentation, std::size_t bladeIndex,
                                 const capture::DepthFrame& frame,

@@ -48,6 +48,10 @@ struct ClusterBase {
     float groundDrop_m = 0.f;  // how far base_m was moved down onto the ground plane
 };
 
+// Whether the blade is a leaf cut where it leaves its cluster's stem (BladeCluster::stemLine_px,
+// PartitionMethod::StemGraph): such a leaf is not rooted at the cluster's base.
+[[nodiscard]] bool leavesAStem(const capture::Segmentation& segmentation, int bladeId);
+
 // The base of the cluster whose bladeIds hold `bladeId`: its base point, with the median depth of
 // the valid readings inside Segmentation::clusterMask (all readings when it is empty) near it.
 // Empty when no cluster lists the blade or no valid reading lies within maxDepthWindowRadius_px.
