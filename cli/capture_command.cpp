@@ -31,10 +31,12 @@ struct CaptureArgs {
     float tolerance_mm = 0.f;
     std::string plane;
     std::string fusion = capture::toString(capture::FusionMethod::Median);
-    std::string findPlant =
-        std::string(capture::kPlantFindingNames.name(capture::SegmenterParams{}.plantFinding));
-    std::string partition =
-        std::string(capture::kPartitionMethodNames.name(capture::SegmenterParams{}.partition));
+    std::string subject = std::string(capture::kSubjectNames.name(capture::Subject::Tuft));
+    // Given on the command line, these stand over the subject's choice.
+    std::string findPlant;
+    std::string partition;
+    const CLI::Option* findPlantOption = nullptr;
+    const CLI::Option* partitionOption = nullptr;
     bool verbose = false;
 };
 
@@ -92,8 +94,11 @@ void runCapture(CaptureArgs& args) {
     // The options' checks have already refused any other name.
     options.segmenter.planeMethod = *capture::kPlaneMethodNames.parse(args.plane);
     options.segmenter.fusion = *capture::kFusionMethodNames.parse(args.fusion);
-    options.segmenter.plantFinding = *capture::kPlantFindingNames.parse(args.findPlant);
-    options.segmenter.partition = *capture::kPartitionMethodNames.parse(args.partition);
+    options.segmenter.setSubject(*capture::kSubjectNames.parse(args.subject));
+    if (args.findPlantOption->count() > 0)
+        options.segmenter.plantFinding = *capture::kPlantFindingNames.parse(args.findPlant);
+    if (args.partitionOption->count() > 0)
+        options.segmenter.partition = *capture::kPartitionMethodNames.parse(args.partition);
     options.fit.setTolerance_m(args.tolerance_mm * 1e-3f);
 
     auto source = capture::openDepthSource(args.source, toSourceOptions(args.sourceArgs));
@@ -161,6 +166,7 @@ void addCaptureCommand(CLI::App& app) {
     cmd->footer(R"(Examples:
   meadow capture samples/recordings/quadratic-leaf --out lib.json --glb lib.glb
   meadow capture tuft.oni --out lib.json --debug overlays/ --verbose
+  meadow capture maize.oni --subject potted-plant --out lib.json --debug overlays/
   meadow capture pngs/ --intrinsics 525,525,319.5,239.5 --depth-unit 0.2mm --near 0.5 --far 1.1 --out lib.json
 
 Record a dozen frames or more of a still plant, seen from the side with its base in view.
@@ -207,19 +213,27 @@ Reference: docs/cli.md (options), docs/capture.md (how it works, capturing your 
     cmd->add_option("--far", args->options.segmenter.farDepth_m, "Far edge of the depth band, m")
         ->check(finiteRange(0.f, 20.f))
         ->group(segmentation);
-    cmd->add_option("--find-plant", args->findPlant,
-                    "Without a band: clusters (room's planes off, the thin object in the middle) "
-                    "or depth-mode (nearest depth mode)")
+    cmd->add_option("--subject", args->subject,
+                    "What the camera looks at: tuft (blades from one base) or potted-plant "
+                    "(leaves off a stem, in a room); picks --find-plant and --partition")
         ->capture_default_str()
-        ->check(CLI::IsMember(capture::kPlantFindingNames.names()))
+        ->check(CLI::IsMember(capture::kSubjectNames.names()))
         ->group(segmentation);
-    cmd->add_option(
-           "--partition", args->partition,
-           "Cut blades by: contour (a fan from one base) or stem-graph (leaves off a stem, "
-           "followed through where they cross; the library then reports the stem's height)")
-        ->capture_default_str()
-        ->check(CLI::IsMember(capture::kPartitionMethodNames.names()))
-        ->group(segmentation);
+    args->findPlantOption =
+        cmd->add_option(
+               "--find-plant", args->findPlant,
+               "Without a band: clusters (room's planes off, the thin object in the middle) "
+               "or depth-mode (nearest depth mode); default: the subject's")
+            ->check(CLI::IsMember(capture::kPlantFindingNames.names()))
+            ->group(segmentation);
+    args->partitionOption =
+        cmd->add_option(
+               "--partition", args->partition,
+               "Cut blades by: contour (a fan from one base) or stem-graph (leaves off a stem, "
+               "followed through where they cross; the library then reports the stem's height); "
+               "default: the subject's")
+            ->check(CLI::IsMember(capture::kPartitionMethodNames.names()))
+            ->group(segmentation);
     cmd->add_option("--plane", args->plane,
                     "Ground plane removal: " + capture::kPlaneMethodNames.list(", "))
         ->default_val(capture::toString(capture::SegmenterParams{}.planeMethod))

@@ -52,7 +52,7 @@ TEST(PlantSynthCli, AMadePlantBecomesATurntableRecordingWithItsTruth) {
     }
 }
 
-// The made plant's leaves leave its stem at 5 and 10 cm: captured with the stem-graph partition,
+// The made plant's leaves leave its stem at 5 and 10 cm: captured as a potted plant,
 // the library's stem runs from its foot to the higher node, 10 cm, within the pot's rim and a
 // few pixels (3 cm), and capture prints it. Each leaf starts where it leaves the stem: none is
 // continued down the stem to the foot, so no archetype is longer than the longer leaf (with
@@ -64,12 +64,17 @@ TEST(PlantSynthCli, AMadePlantsStemHeightIsInTheLibrary) {
     ASSERT_EQ(runMeadow("synth --plant " + plant.string() + " --turntable 4 --out " + rec.string())
                   .exitCode,
               0);
-    const auto c = runMeadow("capture " + rec.string() +
-                             " --fuse 1 --per-group --assume-still --find-plant clusters "
-                             "--partition stem-graph --keep-flagged --out " +
-                             (dir / "lib.json").string());
+    const std::string capture =
+        "capture " + rec.string() + " --fuse 1 --per-group --assume-still --keep-flagged --out ";
+    // --subject potted-plant is the clusters finder and the stem-graph partition.
+    const auto c = runMeadow(capture + (dir / "lib.json").string() + " --subject potted-plant");
     ASSERT_EQ(c.exitCode, 0) << c.output;
     EXPECT_NE(c.output.find("stem 0."), std::string::npos) << c.output;
+    // A partition given stands over the subject's: the contour partition reports no stem.
+    const auto contour = runMeadow(capture + (dir / "contour.json").string() +
+                                   " --subject potted-plant --partition contour");
+    ASSERT_EQ(contour.exitCode, 0) << contour.output;
+    EXPECT_EQ(contour.output.find("stem 0."), std::string::npos) << contour.output;
     const auto library = meadow::modeling::loadArchetypeLibrary(dir / "lib.json");
     ASSERT_TRUE(library.stem);
     EXPECT_NEAR(library.stem->height_m, meadow::test::kMadeLeaves[1].attach_m, 0.03f);

@@ -29,6 +29,12 @@ std::string mustBe(const char* name, const std::string& what, double value) {
 }
 }  // namespace
 
+void SegmenterParams::setSubject(Subject subject) {
+    const bool plant = subject == Subject::PottedPlant;
+    plantFinding = plant ? PlantFinding::Clusters : PlantFinding::DepthMode;
+    partition = plant ? PartitionMethod::StemGraph : PartitionMethod::Contour;
+}
+
 std::string SegmenterParams::problem() const {
     const struct {
         const char* name;

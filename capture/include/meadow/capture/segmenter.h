@@ -61,6 +61,12 @@ enum class PlantFinding {
     DepthMode,  // the nearest dominant depth mode (a tuft before a far background)
     Clusters,   // the room's planes removed, Euclidean clusters, the thin one in the middle
 };
+// What the camera looks at; it picks the plant finding and the partition measured best on it
+// (docs/measurements/plant_benchmark.md).
+enum class Subject {
+    Tuft,         // blades fanning from one base, before a background: DepthMode + Contour
+    PottedPlant,  // leaves off a stem, a pot, a room about it: Clusters + StemGraph
+};
 // How several frames of a still tuft become one depth image (temporal fusion).
 enum class FusionMethod {
     Median,  // per-pixel median of the valid readings (Fan & Sheng 2017)
@@ -83,6 +89,10 @@ inline constexpr EnumNames<PartitionMethod, 2> kPartitionMethodNames{{{
 inline constexpr EnumNames<PlantFinding, 2> kPlantFindingNames{{{
     {PlantFinding::DepthMode, "depth-mode"},
     {PlantFinding::Clusters, "clusters"},
+}}};
+inline constexpr EnumNames<Subject, 2> kSubjectNames{{{
+    {Subject::Tuft, "tuft"},
+    {Subject::PottedPlant, "potted-plant"},
 }}};
 inline constexpr EnumNames<FusionMethod, 2> kFusionMethodNames{{{
     {FusionMethod::Median, "median"},
@@ -263,6 +273,9 @@ struct SegmenterParams {
     // cut threshold: too shallow to cut, deep enough for two blades that touch (clean leaf
     // pieces dip far less, merged touching blades far more).
     float secondTipFraction = 0.4f;
+
+    // Sets plantFinding and partition to those measured best on the subject.
+    void setSubject(Subject subject);
 
     // Empty when usable; otherwise what is wrong with the parameters.
     [[nodiscard]] std::string problem() const;
