@@ -40,23 +40,26 @@ float medianOf(std::vector<float> v) {
     return *mid;
 }
 
-}  // namespace
-
-bool leavesAStem(const capture::Segmentation& segmentation, int bladeId) {
-    return std::any_of(
-        segmentation.clusters.begin(), segmentation.clusters.end(), [&](const auto& c) {
-            return !c.stemLine_px.empty() &&
-                   std::find(c.bladeIds.begin(), c.bladeIds.end(), bladeId) != c.bladeIds.end();
-        });
-}
-
-std::optional<ClusterBase> clusterBase(const capture::Segmentation& segmentation, int bladeId,
-                                       const capture::DepthFrame& frame, const RootParams& params) {
+// The cluster whose bladeIds hold `bladeId`, or null.
+const capture::BladeCluster* clusterOf(const capture::Segmentation& segmentation, int bladeId) {
     const auto cluster = std::find_if(
         segmentation.clusters.begin(), segmentation.clusters.end(), [&](const auto& c) {
             return std::find(c.bladeIds.begin(), c.bladeIds.end(), bladeId) != c.bladeIds.end();
         });
-    if (cluster == segmentation.clusters.end() || frame.depth_mm.empty()) return std::nullopt;
+    return cluster == segmentation.clusters.end() ? nullptr : &*cluster;
+}
+
+}  // namespace
+
+bool leavesAStem(const capture::Segmentation& segmentation, int bladeId) {
+    const capture::BladeCluster* cluster = clusterOf(segmentation, bladeId);
+    return cluster != nullptr && !cluster->stemLine_px.empty();
+}
+
+std::optional<ClusterBase> clusterBase(const capture::Segmentation& segmentation, int bladeId,
+                                       const capture::DepthFrame& frame, const RootParams& params) {
+    const capture::BladeCluster* cluster = clusterOf(segmentation, bladeId);
+    if (cluster == nullptr || frame.depth_mm.empty()) return std::nullopt;
     const cv::Mat1b& mask = segmentation.clusterMask;
     const bool useMask = !mask.empty() && mask.size() == frame.depth_mm.size();
     ClusterBase base;

@@ -297,8 +297,8 @@ TEST(CaptureCli, TwelveFramesFusedByRecurringReadingsAreOneSegmentation) {
 }
 
 // The shared real scenes hold no plant (a room seen by a Kinect, an office in the TUM frame):
-// capture says so in one line, exits 2 and writes no library, also with --keep-flagged, by the
-// depth band and by the clusters finder.
+// capture says so in one line, exits 2 and writes no library, also with --keep-flagged, as a
+// tuft (the depth band) and as a potted plant (the clusters finder).
 TEST(CaptureCli, RealScenesWithoutAPlantSayNoPlantInOneLine) {
     const fs::path oni = meadow::test::realOniRecording();
     const fs::path tumFrame = meadow::test::sharedDataDir() / "real/tum-frame/TUM_depth.png";
@@ -310,15 +310,14 @@ TEST(CaptureCli, RealScenesWithoutAPlantSayNoPlantInOneLine) {
     const std::string tum =
         (dir / "tum").string() + " --intrinsics 525,525,319.5,239.5 --depth-unit 0.2mm";
     for (const std::string& source : {oni.string(), tum})
-        for (const char* keep :
-             {"", " --keep-flagged", " --find-plant clusters --partition stem-graph"}) {
+        for (const char* extra : {"", " --keep-flagged", " --subject potted-plant"}) {
             const fs::path out = dir / "lib.json";
-            const auto r = runMeadow("capture " + source + keep + " --out " + out.string());
-            EXPECT_EQ(r.exitCode, 2) << source << keep << ": " << r.output;
-            EXPECT_EQ(countLines(r.output), 1) << source << keep << ": " << r.output;
+            const auto r = runMeadow("capture " + source + extra + " --out " + out.string());
+            EXPECT_EQ(r.exitCode, 2) << source << extra << ": " << r.output;
+            EXPECT_EQ(countLines(r.output), 1) << source << extra << ": " << r.output;
             EXPECT_NE(r.output.find("no plant in"), std::string::npos)
-                << source << keep << ": " << r.output;
-            EXPECT_FALSE(fs::exists(out)) << source << keep;
+                << source << extra << ": " << r.output;
+            EXPECT_FALSE(fs::exists(out)) << source << extra;
         }
     fs::remove_all(dir);
 }
