@@ -56,7 +56,7 @@ TEST(PlantSynthCli, AMadePlantBecomesATurntableRecordingWithItsTruth) {
 // the library's stem runs from its foot to the higher node, 10 cm, within the pot's rim and a
 // few pixels (3 cm), and capture prints it. Each leaf starts where it leaves the stem: none is
 // continued down the stem to the foot, so no archetype is longer than the longer leaf (with
-// a 10 % margin; rooted at the foot, they reach 1.2-1.3 times it).
+// a 10 % margin; rooted at the foot, they reach well beyond it).
 TEST(PlantSynthCli, AMadePlantsStemHeightIsInTheLibrary) {
     const fs::path dir = freshTempDir("plant_stem");
     const fs::path plant = meadow::test::writeMadePlant(dir / "made.txt");
