@@ -49,12 +49,12 @@ cv::Mat1w castScene(const Intrinsics& k, const std::vector<Plane>& planes,
     return depth;
 }
 
-Segmentation findIn(const cv::Mat1w& depth) {
+Segmentation findIn(const cv::Mat1w& depth, const Intrinsics& k = Intrinsics::kinectV1()) {
     SegmenterParams params;
     params.plantFinding = PlantFinding::Clusters;
     DepthFrame frame;
     frame.depth_mm = depth;
-    frame.intrinsics = Intrinsics::kinectV1();
+    frame.intrinsics = k;
     return Segmenter(params).segment(frame);
 }
 
@@ -80,6 +80,27 @@ TEST(PlantFindingScenes, AThinStripWithOnlyWallsBesideItIsNoPlant) {
         << seg.noBladesReason;
     // The walls alone are no plant either, for the usual reason.
     EXPECT_TRUE(findIn(castScene(k, {left, right}, std::nullopt)).noPlant);
+}
+
+// A wide-angle camera (a RealSense D435's 848 x 480 at 430 px focal length, 89 degrees across)
+// sees a strip 60 cm tall at the same distance on fewer pixels, and a smaller share of its image
+// (0.5 % against 1.2 %): the plant's size is judged by the angle it covers, so both find it.
+// A strip 20 cm tall covers too little for either.
+TEST(PlantFindingScenes, AWideAngleCameraFindsThePlantANarrowOneFindsAtTheSameDistance) {
+    Intrinsics wide;
+    wide.width_px = 848;
+    wide.fx_px = wide.fy_px = 430.f;
+    wide.cx_px = 423.5f;
+    const Strip tallLeaf{kLeaf.x0, kLeaf.x1, -0.3f, kLeaf.y1, kLeaf.z};
+    for (const Intrinsics& k : {Intrinsics::kinectV1(), wide}) {
+        const Segmentation seg = findIn(castScene(k, {kFloor, kWallAhead}, tallLeaf), k);
+        EXPECT_FALSE(seg.noPlant) << k.width_px << " px wide: " << seg.noBladesReason;
+        const Strip shortLeaf{kLeaf.x0, kLeaf.x1, 0.1f, kLeaf.y1, kLeaf.z};
+        const Segmentation small = findIn(castScene(k, {kFloor, kWallAhead}, shortLeaf), k);
+        EXPECT_TRUE(small.noPlant) << k.width_px << " px wide";
+        EXPECT_NE(small.noBladesReason.find("none large enough"), std::string::npos)
+            << small.noBladesReason;
+    }
 }
 
 // Grass seen from straight above stands on the ground, which faces the camera.
