@@ -183,7 +183,7 @@ int run(int argc, char** argv) {
                 << " [--out DIR] [--data DIR] [--set DIR] [--reuse-set] [--quick] [--made TEXT]\n"
                    "  --data DIR  the shared real data (default ../shared/data/real)\n"
                    "  --set DIR   where the rendered test set goes (default build/plant-bench)\n"
-                   "  --reuse-set keep the views already rendered there (same options)\n"
+                   "  --reuse-set keep the views already rendered there (same plant, sensor, views)\n"
                    "  --quick     two plants, four views, one sensor: a smoke run\n";
             return 2;
         }
@@ -219,8 +219,12 @@ int run(int argc, char** argv) {
             o.views.views = views;
             o.sensor = sensor;
             o.out = set / sensor / plant;
-            if (!(reuse && fs::exists(o.out / "truth" / "plant.json"))) synth::synthesizePlant(o);
-            const synth::PlantTruth truth = synth::readPlantTruth(o.out / "truth" / "plant.json");
+            // A set rendered for another run (a --quick one's four views) is rendered again.
+            const fs::path truthFile = o.out / "truth" / "plant.json";
+            if (!(reuse && fs::exists(truthFile) &&
+                  synth::readPlantTruth(truthFile).views.size() == static_cast<std::size_t>(views)))
+                synth::synthesizePlant(o);
+            const synth::PlantTruth truth = synth::readPlantTruth(truthFile);
             const synth::ScoringTruth scoring = synth::scoringTruthOf(truth, o.out / "truth");
             for (std::size_t f = 0; f < kinds; ++f) {
                 std::vector<double> ms;
