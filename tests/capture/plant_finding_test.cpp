@@ -84,8 +84,8 @@ TEST(PlantFindingScenes, AThinStripWithOnlyWallsBesideItIsNoPlant) {
 
 // A wide-angle camera (a RealSense D435's 848 x 480 at 430 px focal length, 89 degrees across)
 // sees a strip 60 cm tall at the same distance on fewer pixels, and a smaller share of its image
-// (0.5 % against 1.2 %): the plant's size is judged by the angle it covers, so both find it.
-// A strip 20 cm tall covers too little for either.
+// (0.5 % against 1.2 %, under the 0.8 % a plant covers): the angle it covers keeps it, so both
+// find it. A strip 20 cm tall covers too little for either.
 TEST(PlantFindingScenes, AWideAngleCameraFindsThePlantANarrowOneFindsAtTheSameDistance) {
     Intrinsics wide;
     wide.width_px = 848;

@@ -349,7 +349,9 @@ FoundPlant findPlant(const cv::Mat1w& depth_mm, const Intrinsics& k, const Segme
         c.nearPlanes = static_cast<float>(near) / static_cast<float>(std::max(1, c.area_px));
     }
     // A pixel spans 1 / (fx fy) steradians near the optical axis.
-    const int minArea_px = static_cast<int>(p.plantMinSolidAngle_sr * k.fx_px * k.fy_px);
+    const int minArea_px =
+        static_cast<int>(std::min(p.plantMinImageShare * static_cast<float>(depth_mm.total()),
+                                  p.plantMinSolidAngle_sr * k.fx_px * k.fy_px));
     std::ostringstream seen;
     seen.precision(2);
     std::vector<std::size_t> thin;

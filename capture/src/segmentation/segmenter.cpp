@@ -79,6 +79,7 @@ std::string SegmenterParams::problem() const {
         {"clusterTolerance_m", clusterTolerance_m, 1e-3f, 1.f},
         {"plantMaxMeanWidth_m", plantMaxMeanWidth_m, 1e-3f, 10.f},
         {"plantMinHeight_m", plantMinHeight_m, 0.f, 10.f},
+        {"plantMinImageShare", plantMinImageShare, 0.f, 1.f},
         {"plantMinSolidAngle_sr", plantMinSolidAngle_sr, 0.f, 12.57f},
         {"minLeafBranch_px", minLeafBranch_px, 0.f, 10000.f},
         {"crossingMaxBend_deg", crossingMaxBend_deg, 0.f, 180.f},

@@ -144,10 +144,13 @@ struct SegmenterParams {
     // a tray of lettuce seen from above: thicker.
     float plantMaxMeanWidth_m = 0.04f;
     float plantMinHeight_m = 0.05f;
-    // ...and covers at least this solid angle (steradians; 0.0089 is 0.8 % of a Kinect's
-    // 640 x 480 view at 525 px focal length): the guide frames the plant to fill much of the
-    // view (docs/capture.md#capturing-your-own-plant); the room's odd ends are smaller. An angle,
-    // not a share of the image, so that a wide-angle camera keeps a plant at the same distance.
+    // ...and covers at least this share of the image, or this solid angle (steradians; 0.0089
+    // is 0.8 % of a Kinect's 640 x 480 view at 525 px focal length), whichever is fewer pixels:
+    // the guide frames the plant to fill much of the view
+    // (docs/capture.md#capturing-your-own-plant), and the room's odd ends are smaller. A
+    // wide-angle camera sees the same plant at the same distance on a smaller share of its
+    // image; the angle keeps it.
+    float plantMinImageShare = 0.008f;
     float plantMinSolidAngle_sr = 0.0089f;
 
     // --- Ground / background plane removal.
