@@ -31,6 +31,8 @@ void observeGroup(const capture::GroupSegmentation& group, const CaptureOptions&
     const capture::DepthFrame& depthFrame = group.frames.front();
     const int frameIndex = depthFrame.index;
     ++summary.segmentations;
+    for (const capture::StageReport& stage : seg.report)
+        summary.stage_ms[stage.stage] += stage.time_ms;
     if (group.moving) observations.movingGroups.insert(group.group);
     if (group.runMoved && summary.motion.empty()) summary.motion = group.runMoved->measurement;
     if (group.runMoved)

@@ -42,7 +42,9 @@ struct Row {
     std::vector<float> lengthError, widthError;
     std::vector<float> stemError;  // |measured - true| / true stem height, one per plant
     double countError = 0.0, baselineCountError = 0.0;  // summed over views
-    std::vector<double> capture_ms;                     // per frame
+    // Per frame: all of capture; finding the plant (depth band, plane removal, plant finding);
+    // cutting it into blades (partition).
+    std::vector<double> capture_ms, finding_ms, partition_ms;
     void add(const Row& o) {
         views += o.views, leaves += o.leaves, matched += o.matched;
         for (std::size_t k = 0; k < falseBlades.size(); ++k) falseBlades[k] += o.falseBlades[k];
@@ -51,6 +53,8 @@ struct Row {
         stemError.insert(stemError.end(), o.stemError.begin(), o.stemError.end());
         countError += o.countError, baselineCountError += o.baselineCountError;
         capture_ms.insert(capture_ms.end(), o.capture_ms.begin(), o.capture_ms.end());
+        finding_ms.insert(finding_ms.end(), o.finding_ms.begin(), o.finding_ms.end());
+        partition_ms.insert(partition_ms.end(), o.partition_ms.begin(), o.partition_ms.end());
     }
 };
 
@@ -66,9 +70,10 @@ struct Method {
     }
 };
 
-modeling::ArchetypeLibrary captureEachFrame(const fs::path& recording, int frames,
-                                            std::vector<double>& ms, bool perFrame,
-                                            const Method& method) {
+// Fills row.capture_ms, finding_ms and partition_ms, one value a frame (each frame's share of the
+// run's time).
+modeling::ArchetypeLibrary captureEachFrame(const fs::path& recording, int frames, Row& row,
+                                            bool perFrame, const Method& method) {
     auto source = capture::openDepthSource(recording.string());
     modeling::CaptureOptions options;
     options.segmenter.plantFinding = method.finding;
@@ -79,15 +84,26 @@ modeling::ArchetypeLibrary captureEachFrame(const fs::path& recording, int frame
         options.tracks.enabled = false;
     }
     const auto start = std::chrono::steady_clock::now();
-    modeling::ArchetypeLibrary library;
+    modeling::CaptureResult result;
     try {
-        library = modeling::captureArchetypes(*source, recording.string(), options).library;
+        result = modeling::captureArchetypes(*source, recording.string(), options);
     } catch (const modeling::ModelingError&) {
     }
     const double total =
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-    for (int i = 0; i < frames; ++i) ms.push_back(total / frames);
-    return library;
+    const auto stage = [&](const char* name) {
+        const auto it = result.summary.stage_ms.find(name);
+        return it == result.summary.stage_ms.end() ? 0.0 : it->second;
+    };
+    const double finding = stage("depth band") + stage("plane removal") + stage("plant finding");
+    for (int i = 0; i < frames; ++i) {
+        row.capture_ms.push_back(total / frames);
+        if (result.summary.segmentations > 0) {
+            row.finding_ms.push_back(finding / frames);
+            row.partition_ms.push_back(stage("partition") / frames);
+        }
+    }
+    return result.library;
 }
 
 // The row of the truth's own leaves, each modelled as capture models a blade.
@@ -141,7 +157,9 @@ std::string cells(const Row& r) {
         << (r.widthError.empty() ? "-" : fixed(100.0 * median(r.widthError), 0) + " %") << " | "
         << (r.stemError.empty() ? "-" : fixed(100.0 * median(r.stemError), 0) + " %") << " | "
         << fixed(r.countError / views, 1) << " | " << fixed(r.baselineCountError / views, 1)
-        << " | " << (r.capture_ms.empty() ? "-" : fixed(median(r.capture_ms), 0));
+        << " | " << (r.capture_ms.empty() ? "-" : fixed(median(r.capture_ms), 0)) << " | "
+        << (r.finding_ms.empty() ? "-" : fixed(median(r.finding_ms), 0)) << " | "
+        << (r.partition_ms.empty() ? "-" : fixed(median(r.partition_ms), 1));
     return out.str();
 }
 
@@ -155,7 +173,9 @@ std::string csvRow(const Row& r) {
         << orBlank(r.widthError, median(r.widthError), 3) << ','
         << orBlank(r.stemError, median(r.stemError), 3) << ',' << fixed(r.countError / views, 2)
         << ',' << fixed(r.baselineCountError / views, 2) << ','
-        << orBlank(r.capture_ms, median(r.capture_ms), 1);
+        << orBlank(r.capture_ms, median(r.capture_ms), 1) << ','
+        << orBlank(r.finding_ms, median(r.finding_ms), 1) << ','
+        << orBlank(r.partition_ms, median(r.partition_ms), 2);
     return out.str();
 }
 
@@ -183,7 +203,8 @@ int run(int argc, char** argv) {
                 << " [--out DIR] [--data DIR] [--set DIR] [--reuse-set] [--quick] [--made TEXT]\n"
                    "  --data DIR  the shared real data (default ../shared/data/real)\n"
                    "  --set DIR   where the rendered test set goes (default build/plant-bench)\n"
-                   "  --reuse-set keep the views already rendered there (same plant, sensor, views)\n"
+                   "  --reuse-set keep the views already rendered there (same plant, sensor, "
+                   "views)\n"
                    "  --quick     two plants, four views, one sensor: a smoke run\n";
             return 2;
         }
@@ -227,16 +248,18 @@ int run(int argc, char** argv) {
             const synth::PlantTruth truth = synth::readPlantTruth(truthFile);
             const synth::ScoringTruth scoring = synth::scoringTruthOf(truth, o.out / "truth");
             for (std::size_t f = 0; f < kinds; ++f) {
-                std::vector<double> ms;
+                Row timed;
                 const modeling::ArchetypeLibrary library =
-                    f < findings.size() ? captureEachFrame(o.out, views, ms, true, findings[f])
+                    f < findings.size() ? captureEachFrame(o.out, views, timed, true, findings[f])
                                         : modelTruthLeaves(o.out, scoring, {});
                 Row row = score(library, scoring, o.out, truth.options.distance_m);
+                row.capture_ms = timed.capture_ms;
+                row.finding_ms = timed.finding_ms;
+                row.partition_ms = timed.partition_ms;
                 if (library.stem)
                     row.stemError.push_back(
                         std::abs(library.stem->height_m - truthStemHeight_m(truth)) /
                         truthStemHeight_m(truth));
-                row.capture_ms = ms;
                 row.set = "maize", row.sensor = sensor, row.what = plant;
                 row.finding = kindName(f);
                 std::cout << sensor << ' ' << row.finding << ' ' << plant << ": " << cells(row)
@@ -262,14 +285,16 @@ int run(int argc, char** argv) {
             o.frames = 3;
             o.out = set / "tufts" / preset;
             if (&finding == &findings.front()) synth::synthesize(o);
-            std::vector<double> ms;
+            Row timed;
             const modeling::ArchetypeLibrary library =
-                captureEachFrame(o.out, 3, ms, false, finding);
+                captureEachFrame(o.out, 3, timed, false, finding);
             synth::ScoringTruth truth = synth::readScoringTruth(o.out / "truth" / "blades.json");
             truth.views.resize(1);  // the library's archetypes stem from the group's first frame
             Row row = score(library, truth, o.out,
                             synth::readSynthTruth(o.out / "truth" / "blades.json").distance_m);
-            row.capture_ms = ms;
+            row.capture_ms = timed.capture_ms;
+            row.finding_ms = timed.finding_ms;
+            row.partition_ms = timed.partition_ms;
             row.set = "tufts", row.sensor = "kinect-v1", row.what = preset;
             row.finding = findingName(finding);
             std::cout << "tuft " << row.finding << ' ' << preset << ": " << cells(row) << '\n';
@@ -304,11 +329,14 @@ int run(int argc, char** argv) {
           "cuts it (its own pixels the sensor read, its base and tip where its true centre "
           "line starts and ends) and modelled as capture models a blade; what they miss, the "
           "sensor did not show well enough or the model cannot hold. The tuft rows score the "
-          "synthetic presets' first fused group the same way.\n\n"
+          "synthetic presets' first fused group the same way. Times, on one core, median over "
+          "the frames: all of capture from depth to archetypes; finding the plant (depth band, "
+          "plane removal, plant finding); the partition.\n\n"
           "| Set | Sensor | Capture | Plant | Views | Leaves | Recall | False / view | "
           "False on | Length error (median) | Width error (median) | Stem height error (median) | "
-          "Count error | Baseline count error | Capture ms / frame |\n"
-          "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+          "Count error | Baseline count error | Capture ms / frame | Finding ms / frame | "
+          "Partition ms / frame |\n"
+          "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
     for (const Row& r : rows)
         md << "| " << r.set << " | " << r.sensor << " | " << r.finding << " | "
            << (r.what == "all" ? "**all**" : r.what) << " | " << cells(r) << " |\n";
@@ -318,7 +346,7 @@ int run(int argc, char** argv) {
     for (std::size_t k = 0; k < 7; ++k)
         csv << ",false_on_" << synth::kFalseBladeOnNames.name(static_cast<synth::FalseBladeOn>(k));
     csv << ",length_error_median,width_error_median,stem_height_error_median,count_error,baseline_"
-           "count_error,capture_ms\n";
+           "count_error,capture_ms,finding_ms,partition_ms\n";
     for (const Row& r : rows) csv << csvRow(r) << '\n';
     writeText(out / "plant_benchmark.csv", csv.str());
     return 0;

@@ -34,16 +34,17 @@ struct CaptureSummary {
     int framesRead = 0;
     int segmentations = 0;
     int bladesFound = 0;
-    int bladesModelled = 0;                // observations behind the library's archetypes
-    int averagedArchetypes = 0;            // archetypes fitted to two or more observations
-    int emptySegmentations = 0;            // segmentations that found no blade
-    int noPlantSegmentations = 0;          // of them, those that saw no plant at all
-    std::string noPlant;                   // the first one's reason ("no plant in view: ...")
-    int motionTests = 0;                   // runs tested for motion (GroupingParams::checkMotion)
-    int movingRuns = 0;                    // of them, runs in which the tuft moved
-    std::string motion;                    // the first moving run's measurement, for the CLI
-    std::map<std::string, int> skippedBy;  // flag name -> blades it kept from modelling
-    std::vector<std::string> notes;        // one line per skipped blade or empty segmentation
+    int bladesModelled = 0;                  // observations behind the library's archetypes
+    int averagedArchetypes = 0;              // archetypes fitted to two or more observations
+    int emptySegmentations = 0;              // segmentations that found no blade
+    int noPlantSegmentations = 0;            // of them, those that saw no plant at all
+    std::string noPlant;                     // the first one's reason ("no plant in view: ...")
+    int motionTests = 0;                     // runs tested for motion (GroupingParams::checkMotion)
+    int movingRuns = 0;                      // of them, runs in which the tuft moved
+    std::string motion;                      // the first moving run's measurement, for the CLI
+    std::map<std::string, int> skippedBy;    // flag name -> blades it kept from modelling
+    std::vector<std::string> notes;          // one line per skipped blade or empty segmentation
+    std::map<std::string, double> stage_ms;  // wall time of each segmentation stage, summed
 };
 
 // What the blades were skipped as, with counts, and what to do about blades too thin to model
