@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <limits>
+#include <opencv2/core.hpp>
 #include <optional>
 #include <vector>
 
@@ -101,6 +102,34 @@ TEST(PlantFindingScenes, AWideAngleCameraFindsThePlantANarrowOneFindsAtTheSameDi
         EXPECT_NE(small.noBladesReason.find("none large enough"), std::string::npos)
             << small.noBladesReason;
     }
+}
+
+// Readings scattered as a stereo camera's are, uniformly within +-a z^2 (a in mm per square
+// metre): neighbours a metre or two away differ by tens of millimetres.
+cv::Mat1w withStereoScatter(cv::Mat1w depth, float a_mm_per_m2) {
+    cv::RNG rng(7);
+    for (auto& d : depth) {
+        if (d == 0) continue;
+        const float z_m = static_cast<float>(d) / 1000.f;
+        d = static_cast<std::uint16_t>(static_cast<float>(d) +
+                                       rng.uniform(-a_mm_per_m2, a_mm_per_m2) * z_m * z_m);
+    }
+    return depth;
+}
+
+// A strip 4 cm wide and 1 m tall, 2 m away, read by a camera that scatters its readings by up
+// to 24 mm there (a RealSense D435 at that distance): neighbouring readings on the strip differ by
+// more than the 20 mm a depth jump takes near the camera, so a fixed jump would cut it into
+// pieces too small to be a plant. The jumps follow the frame's own steps between neighbours.
+TEST(PlantFindingScenes, AFarPlantReadByAStereoCameraStaysWhole) {
+    const Strip tallLeaf{-0.02f, 0.02f, -0.7f, 0.3f, 2.f};
+    const cv::Mat1w exact = castScene(Intrinsics::kinectV1(), {kFloor, kWallAhead}, tallLeaf);
+    const Segmentation seg = findIn(withStereoScatter(exact, 6.f));
+    EXPECT_FALSE(seg.noPlant) << seg.noBladesReason;
+    // The plant's mask holds most of the strip's pixels.
+    const cv::Mat1b strip = castScene(Intrinsics::kinectV1(), {}, tallLeaf) > 0;
+    ASSERT_FALSE(seg.clusterMask.empty());
+    EXPECT_GE(cv::countNonZero(seg.clusterMask & strip), 0.8 * cv::countNonZero(strip));
 }
 
 // Grass seen from straight above stands on the ground, which faces the camera.

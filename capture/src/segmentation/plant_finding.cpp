@@ -46,6 +46,8 @@ constexpr float kPlaneToleranceGrowth_per_m = 0.01f;
 constexpr float kRemnantTolerances = 2.f;
 constexpr float kMaxRemnantShare = 0.6f;
 constexpr float kLeafGap_m = 0.03f;
+// A depth jump spans this many of the sensor's 90th-percentile neighbour steps, at least.
+constexpr float kJumpSteps = 2.f;
 // A piece that joins the plant is held to less: slivers of the floor and wall beside the plant
 // lie within its reach.
 constexpr float kMaxJoinedRemnantShare = 0.2f;
@@ -211,7 +213,31 @@ bool boundsMeet(const Cluster& a, const Cluster& b, float margin_m) {
 // Pixels on a jump in depth (a neighbour nearer or farther by over `tolerance_mm`): where a
 // sensor reads mixed ("flying") depths between a leaf and what lies behind it, which would chain
 // the two into one cluster.
-cv::Mat1b depthJumps(const cv::Mat1w& depth_mm, const cv::Mat1b& rest, float tolerance_mm) {
+// How far apart the sensor puts neighbouring readings of one surface, per square metre of depth
+// (stereo and structured-light steps grow as z squared): the 90th percentile over horizontal
+// neighbours whose readings differ by under 10 % of their depth (not two surfaces), on every
+// 2nd row.
+float neighbourStep_mm_per_m2(const cv::Mat1w& depth_mm) {
+    std::vector<float> steps;
+    for (int y = 0; y < depth_mm.rows; y += 2)
+        for (int x = 0; x + 1 < depth_mm.cols; ++x) {
+            const int a = depth_mm(y, x), b = depth_mm(y, x + 1);
+            if (a == 0 || b == 0) continue;
+            const float z_m = static_cast<float>(a) / kMillimetresPerMetre;
+            const float step = static_cast<float>(std::abs(b - a));
+            if (step < 0.1f * static_cast<float>(a)) steps.push_back(step / (z_m * z_m));
+        }
+    if (steps.empty()) return 0.f;
+    const auto at = steps.begin() + static_cast<std::ptrdiff_t>(steps.size() * 9 / 10);
+    std::nth_element(steps.begin(), at, steps.end());
+    return *at;
+}
+
+// Pixels whose depth differs from a neighbour's by more than the tolerance there: `floor_mm`, or
+// kJumpSteps of the frame's own steps (neighbourStep_mm_per_m2) at that depth where the sensor
+// steps wider (a stereo camera two metres away steps 30 mm and more between neighbours).
+cv::Mat1b depthJumps(const cv::Mat1w& depth_mm, const cv::Mat1b& rest, float floor_mm) {
+    const float step = neighbourStep_mm_per_m2(depth_mm);
     cv::Mat1w nearest, farthest;
     const cv::Mat kernel = cv::getStructuringElement(cv::MORPH_RECT, {3, 3});
     cv::Mat1w valid = depth_mm.clone();
@@ -220,10 +246,14 @@ cv::Mat1b depthJumps(const cv::Mat1w& depth_mm, const cv::Mat1b& rest, float tol
     cv::dilate(depth_mm, farthest, kernel);
     cv::Mat1b jumps = cv::Mat1b::zeros(depth_mm.size());
     for (int y = 0; y < depth_mm.rows; ++y)
-        for (int x = 0; x < depth_mm.cols; ++x)
-            if (rest(y, x) && (depth_mm(y, x) - nearest(y, x) > tolerance_mm ||
-                               farthest(y, x) - depth_mm(y, x) > tolerance_mm))
+        for (int x = 0; x < depth_mm.cols; ++x) {
+            if (!rest(y, x)) continue;
+            const float z_m = static_cast<float>(depth_mm(y, x)) / kMillimetresPerMetre;
+            const float tolerance_mm = std::max(floor_mm, kJumpSteps * step * z_m * z_m);
+            if (depth_mm(y, x) - nearest(y, x) > tolerance_mm ||
+                farthest(y, x) - depth_mm(y, x) > tolerance_mm)
                 jumps(y, x) = 255;
+        }
     return jumps;
 }
 
