@@ -54,8 +54,8 @@ fi
 
 if wanted plants; then
   step "real plants: capture against the truth, beside a plain leaf counter"
-  plants=(--out "$out" --made "$made" --set "$root/build/plant-bench")
   # The smoke run's four views go to their own folder, not over the full set's twelve.
+  plants=(--out "$out" --made "$made" --set "$root/build/plant-bench")
   ((quick)) && plants=(--out "$out" --made "$made" --set "$root/build/plant-bench-quick" --quick)
   "$bin/meadow_plant_bench" "${plants[@]}" > "$out/.plants.log"
 fi

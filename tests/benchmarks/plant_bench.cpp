@@ -35,6 +35,17 @@ const std::vector<std::string> kPlants{"v-3-1", "v-3-2", "v-6-1", "v-6-2", "v-9-
 const std::vector<std::string> kTuftPresets{"quadratic-leaf", "shrub-leaf", "bamboo-leaf",
                                             "sharp-tip", "slim-grass"};
 
+// Per frame: all of capture; finding the plant (depth band, plane removal, plant finding);
+// cutting it into blades (partition).
+struct FrameTimes {
+    std::vector<double> capture_ms, finding_ms, partition_ms;
+    void add(const FrameTimes& o) {
+        capture_ms.insert(capture_ms.end(), o.capture_ms.begin(), o.capture_ms.end());
+        finding_ms.insert(finding_ms.end(), o.finding_ms.begin(), o.finding_ms.end());
+        partition_ms.insert(partition_ms.end(), o.partition_ms.begin(), o.partition_ms.end());
+    }
+};
+
 struct Row {
     std::string set, sensor, what, finding;
     int views = 0, leaves = 0, matched = 0;
@@ -42,9 +53,7 @@ struct Row {
     std::vector<float> lengthError, widthError;
     std::vector<float> stemError;  // |measured - true| / true stem height, one per plant
     double countError = 0.0, baselineCountError = 0.0;  // summed over views
-    // Per frame: all of capture; finding the plant (depth band, plane removal, plant finding);
-    // cutting it into blades (partition).
-    std::vector<double> capture_ms, finding_ms, partition_ms;
+    FrameTimes times;
     void add(const Row& o) {
         views += o.views, leaves += o.leaves, matched += o.matched;
         for (std::size_t k = 0; k < falseBlades.size(); ++k) falseBlades[k] += o.falseBlades[k];
@@ -52,9 +61,7 @@ struct Row {
         widthError.insert(widthError.end(), o.widthError.begin(), o.widthError.end());
         stemError.insert(stemError.end(), o.stemError.begin(), o.stemError.end());
         countError += o.countError, baselineCountError += o.baselineCountError;
-        capture_ms.insert(capture_ms.end(), o.capture_ms.begin(), o.capture_ms.end());
-        finding_ms.insert(finding_ms.end(), o.finding_ms.begin(), o.finding_ms.end());
-        partition_ms.insert(partition_ms.end(), o.partition_ms.begin(), o.partition_ms.end());
+        times.add(o.times);
     }
 };
 
@@ -70,10 +77,10 @@ struct Method {
     }
 };
 
-// Fills row.capture_ms, finding_ms and partition_ms, one value a frame (each frame's share of the
-// run's time).
-modeling::ArchetypeLibrary captureEachFrame(const fs::path& recording, int frames, Row& row,
-                                            bool perFrame, const Method& method) {
+// Fills `times`, one value a frame (each frame's share of the run's time).
+modeling::ArchetypeLibrary captureEachFrame(const fs::path& recording, int frames,
+                                            FrameTimes& times, bool perFrame,
+                                            const Method& method) {
     auto source = capture::openDepthSource(recording.string());
     modeling::CaptureOptions options;
     options.segmenter.plantFinding = method.finding;
@@ -97,10 +104,10 @@ modeling::ArchetypeLibrary captureEachFrame(const fs::path& recording, int frame
     };
     const double finding = stage("depth band") + stage("plane removal") + stage("plant finding");
     for (int i = 0; i < frames; ++i) {
-        row.capture_ms.push_back(total / frames);
+        times.capture_ms.push_back(total / frames);
         if (result.summary.segmentations > 0) {
-            row.finding_ms.push_back(finding / frames);
-            row.partition_ms.push_back(stage("partition") / frames);
+            times.finding_ms.push_back(finding / frames);
+            times.partition_ms.push_back(stage("partition") / frames);
         }
     }
     return result.library;
@@ -139,6 +146,7 @@ Row score(const modeling::ArchetypeLibrary& library, const synth::ScoringTruth& 
 }
 
 std::string cells(const Row& r) {
+    const FrameTimes& t = r.times;
     const double views = std::max(r.views, 1);
     std::ostringstream out;
     out << r.views << " | " << r.leaves << " | "
@@ -157,13 +165,14 @@ std::string cells(const Row& r) {
         << (r.widthError.empty() ? "-" : fixed(100.0 * median(r.widthError), 0) + " %") << " | "
         << (r.stemError.empty() ? "-" : fixed(100.0 * median(r.stemError), 0) + " %") << " | "
         << fixed(r.countError / views, 1) << " | " << fixed(r.baselineCountError / views, 1)
-        << " | " << (r.capture_ms.empty() ? "-" : fixed(median(r.capture_ms), 0)) << " | "
-        << (r.finding_ms.empty() ? "-" : fixed(median(r.finding_ms), 0)) << " | "
-        << (r.partition_ms.empty() ? "-" : fixed(median(r.partition_ms), 1));
+        << " | " << (t.capture_ms.empty() ? "-" : fixed(median(t.capture_ms), 0)) << " | "
+        << (t.finding_ms.empty() ? "-" : fixed(median(t.finding_ms), 0)) << " | "
+        << (t.partition_ms.empty() ? "-" : fixed(median(t.partition_ms), 1));
     return out.str();
 }
 
 std::string csvRow(const Row& r) {
+    const FrameTimes& t = r.times;
     const double views = std::max(r.views, 1);
     std::ostringstream out;
     out << r.set << ',' << r.sensor << ',' << r.finding << ',' << r.what << ',' << r.views << ','
@@ -173,9 +182,9 @@ std::string csvRow(const Row& r) {
         << orBlank(r.widthError, median(r.widthError), 3) << ','
         << orBlank(r.stemError, median(r.stemError), 3) << ',' << fixed(r.countError / views, 2)
         << ',' << fixed(r.baselineCountError / views, 2) << ','
-        << orBlank(r.capture_ms, median(r.capture_ms), 1) << ','
-        << orBlank(r.finding_ms, median(r.finding_ms), 1) << ','
-        << orBlank(r.partition_ms, median(r.partition_ms), 2);
+        << orBlank(t.capture_ms, median(t.capture_ms), 1) << ','
+        << orBlank(t.finding_ms, median(t.finding_ms), 1) << ','
+        << orBlank(t.partition_ms, median(t.partition_ms), 2);
     return out.str();
 }
 
@@ -248,14 +257,12 @@ int run(int argc, char** argv) {
             const synth::PlantTruth truth = synth::readPlantTruth(truthFile);
             const synth::ScoringTruth scoring = synth::scoringTruthOf(truth, o.out / "truth");
             for (std::size_t f = 0; f < kinds; ++f) {
-                Row timed;
+                FrameTimes times;
                 const modeling::ArchetypeLibrary library =
-                    f < findings.size() ? captureEachFrame(o.out, views, timed, true, findings[f])
+                    f < findings.size() ? captureEachFrame(o.out, views, times, true, findings[f])
                                         : modelTruthLeaves(o.out, scoring, {});
                 Row row = score(library, scoring, o.out, truth.options.distance_m);
-                row.capture_ms = timed.capture_ms;
-                row.finding_ms = timed.finding_ms;
-                row.partition_ms = timed.partition_ms;
+                row.times = times;
                 if (library.stem)
                     row.stemError.push_back(
                         std::abs(library.stem->height_m - truthStemHeight_m(truth)) /
@@ -285,16 +292,14 @@ int run(int argc, char** argv) {
             o.frames = 3;
             o.out = set / "tufts" / preset;
             if (&finding == &findings.front()) synth::synthesize(o);
-            Row timed;
+            FrameTimes times;
             const modeling::ArchetypeLibrary library =
-                captureEachFrame(o.out, 3, timed, false, finding);
+                captureEachFrame(o.out, 3, times, false, finding);
             synth::ScoringTruth truth = synth::readScoringTruth(o.out / "truth" / "blades.json");
             truth.views.resize(1);  // the library's archetypes stem from the group's first frame
             Row row = score(library, truth, o.out,
                             synth::readSynthTruth(o.out / "truth" / "blades.json").distance_m);
-            row.capture_ms = timed.capture_ms;
-            row.finding_ms = timed.finding_ms;
-            row.partition_ms = timed.partition_ms;
+            row.times = times;
             row.set = "tufts", row.sensor = "kinect-v1", row.what = preset;
             row.finding = findingName(finding);
             std::cout << "tuft " << row.finding << ' ' << preset << ": " << cells(row) << '\n';

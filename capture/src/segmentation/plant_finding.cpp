@@ -208,11 +208,6 @@ bool boundsMeet(const Cluster& a, const Cluster& b, float margin_m) {
     return true;
 }
 
-// Euclidean clusters of `rest` on a stride, each grown back to every pixel of `rest` beside its
-// samples at a depth within the tolerance.
-// Pixels on a jump in depth (a neighbour nearer or farther by over `tolerance_mm`): where a
-// sensor reads mixed ("flying") depths between a leaf and what lies behind it, which would chain
-// the two into one cluster.
 // How far apart the sensor puts neighbouring readings of one surface, per square metre of depth
 // (stereo and structured-light steps grow as z squared): the 90th percentile over horizontal
 // neighbours whose readings differ by under 10 % of their depth (not two surfaces), on every
@@ -233,9 +228,11 @@ float neighbourStep_mm_per_m2(const cv::Mat1w& depth_mm) {
     return *at;
 }
 
-// Pixels whose depth differs from a neighbour's by more than the tolerance there: `floor_mm`, or
-// kJumpSteps of the frame's own steps (neighbourStep_mm_per_m2) at that depth where the sensor
-// steps wider (a stereo camera two metres away steps 30 mm and more between neighbours).
+// Pixels on a jump in depth, a neighbour nearer or farther by more than the tolerance there:
+// where a sensor reads mixed ("flying") depths between a leaf and what lies behind it, which
+// would chain the two into one cluster. The tolerance is `floor_mm`, or kJumpSteps of the frame's
+// own steps (neighbourStep_mm_per_m2) at that depth where the sensor steps wider (a stereo camera
+// two metres away steps 30 mm and more between neighbours).
 cv::Mat1b depthJumps(const cv::Mat1w& depth_mm, const cv::Mat1b& rest, float floor_mm) {
     const float step = neighbourStep_mm_per_m2(depth_mm);
     cv::Mat1w nearest, farthest;
@@ -257,6 +254,8 @@ cv::Mat1b depthJumps(const cv::Mat1w& depth_mm, const cv::Mat1b& rest, float flo
     return jumps;
 }
 
+// Euclidean clusters of `rest` on a stride, each grown back to every pixel of `rest` beside its
+// samples at a depth within the tolerance.
 std::vector<Cluster> euclideanClusters(const cv::Mat1w& depth_mm, const Intrinsics& k,
                                        const SegmenterParams& p, const cv::Mat1b& rest) {
     const float nearTolerance_mm = p.clusterTolerance_m * kMillimetresPerMetre;
