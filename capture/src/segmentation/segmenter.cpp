@@ -84,6 +84,7 @@ std::string SegmenterParams::problem() const {
         {"minLeafBranch_px", minLeafBranch_px, 0.f, 10000.f},
         {"crossingMaxBend_deg", crossingMaxBend_deg, 0.f, 180.f},
         {"crossingDepthStep_mm", crossingDepthStep_mm, 0.f, 100000.f},
+        {"leafGapBridge_m", leafGapBridge_m, 0.f, 1.f},
     };
     for (const auto& r : ranges) {
         if (!std::isfinite(r.value))
@@ -291,16 +292,19 @@ struct Segmenter::Impl {
                 seg::removeOutliers(depth_mm, intrinsics, params, mask, r);
             });
         return fromMask(std::move(mask), std::move(out), seg::SensedExtent::of(depth_mm),
-                        trails ? plant.candidates : cv::Mat1b(), depth_mm);
+                        trails ? plant.candidates : cv::Mat1b(), depth_mm, cv::Mat1b(),
+                        &intrinsics);
     }
 
     // `sensed`: where the sensor read anything (the whole frame for a given mask).
     // `readings`: the in-band readings before outlier removal, `depth_mm` the depth (both empty
-    // for a given mask); `recurring`: in-band readings recurring over more frames (may be empty).
+    // for a given mask); `recurring`: in-band readings recurring over more frames (may be empty);
+    // `intrinsics`: the camera's, where the plant was found in the scene (else null).
     Segmentation fromMask(cv::Mat1b mask, Segmentation out, const seg::SensedExtent& sensed,
                           const cv::Mat1b& readings = cv::Mat1b(),
                           const cv::Mat1w& depth_mm = cv::Mat1w(),
-                          const cv::Mat1b& recurring = cv::Mat1b()) const {
+                          const cv::Mat1b& recurring = cv::Mat1b(),
+                          const Intrinsics* intrinsics = nullptr) const {
         // Clean-up and contours work inside the region the mask can reach, not the whole frame:
         // a tuft covers a small part of it, and the results are the same (cleanUpRegion).
         const cv::Rect cleaned = seg::cleanUpRegion(mask, params);
@@ -322,6 +326,10 @@ struct Segmenter::Impl {
                 trails = seg::recoverTipTrails(readings, recurring, params, mask, r);
                 region |= trails.box;
                 out.edgeRaggedness = trails.raggedness;
+            });
+        if (intrinsics && params.partition == PartitionMethod::StemGraph)
+            stage(out, "leaf gaps", &mask, [&](StageReport& r) {
+                seg::bridgeLeafGaps(mask, depth_mm, *intrinsics, params, r);
             });
         out.clusterMask = mask;
         stage(out, "contours", &local, [&](StageReport& r) {

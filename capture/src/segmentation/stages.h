@@ -125,6 +125,12 @@ void cleanUpMask(const SegmenterParams& params, cv::Mat1b& mask, StageReport& re
 // `dropped` ones (by label) no longer in it.
 void linkFragments(const SegmenterParams& params, const cv::Mat1i& labels, const cv::Mat& stats,
                    const std::vector<char>& dropped, cv::Mat1b& mask, StageReport& report);
+// leaf_gaps.cpp: ends of the mask's skeleton in different pieces that face each other within
+// SegmenterParams::leafGapBridge_m in space, each running on towards the other within
+// crossingMaxBend_deg, are joined by a line of the leaf's width: one leaf the sensor did not read
+// along a stretch. Shortest first; each end once, each pair of pieces once. Returns how many.
+int bridgeLeafGaps(cv::Mat1b& mask, const cv::Mat1w& depth_mm, const Intrinsics& intrinsics,
+                   const SegmenterParams& params, StageReport& report);
 // contour_smoothing.cpp: every contour of the mask averaged along its length (Gaussian of
 // sigma_px points), no point moved more than maxShift_px, tips and valleys kept, and the mask
 // redrawn from them. 0 for either = off.

@@ -233,6 +233,10 @@ struct SegmenterParams {
     // or the stem stays one leaf (docs/capture.md#partition-by-the-stem).
     float crossingMaxBend_deg = 45.0f;
     float crossingDepthStep_mm = 100.0f;
+    // StemGraph: two pieces of the mask whose skeletons end facing each other, this near in
+    // space and turning less than crossingMaxBend_deg to meet, are one leaf the sensor did not
+    // read along a stretch, and are joined (0 = off; docs/capture.md#partition-by-the-stem).
+    float leafGapBridge_m = 0.03f;
     ReferencePoint reference = ReferencePoint::BasePoint;
     float baseBandFraction = 0.05f;  // BasePoint: lowest share of the cluster's height used
     float smoothingSigma_px = 2.0f;  // Gaussian along the contour, in contour samples
