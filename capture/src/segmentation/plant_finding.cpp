@@ -8,7 +8,7 @@
 #include <pcl/point_types.h>
 #include <pcl/sample_consensus/method_types.h>
 #include <pcl/sample_consensus/model_types.h>
-#include <pcl/search/kdtree.h>
+#include <pcl/search/organized.h>
 #include <pcl/segmentation/extract_clusters.h>
 #include <pcl/segmentation/sac_segmentation.h>
 
@@ -256,6 +256,31 @@ cv::Mat1b depthJumps(const cv::Mat1w& depth_mm, const cv::Mat1b& rest, float flo
 
 // Euclidean clusters of `rest` on a stride, each grown back to every pixel of `rest` beside its
 // samples at a depth within the tolerance.
+// PCL's organized neighbour search with the camera's own projection. PCL estimates it from the
+// points it searches, a few dozen of a pyramid's grid: on a plant alone, or a flat leaf, they
+// are too few or all in one plane, the estimate goes wrong without a word and every point is
+// found alone. The grid's projection is the camera's, scaled by the sampling stride.
+class GridNeighbours : public pcl::search::OrganizedNeighbor<pcl::PointXYZ> {
+public:
+    GridNeighbours(const Intrinsics& k, int stride) {
+        const float s = 1.f / static_cast<float>(stride);
+        projection_matrix_ << k.fx_px * s, 0.f, k.cx_px * s, 0.f,  //
+            0.f, k.fy_px * s, k.cy_px * s, 0.f,                    //
+            0.f, 0.f, 1.f, 0.f;
+        KR_ = projection_matrix_.topLeftCorner<3, 3>();
+        KR_KRT_ = KR_ * KR_.transpose();
+    }
+    // As OrganizedNeighbor's, without estimating the projection.
+    void setInputCloud(const PointCloudConstPtr& cloud,
+                       const IndicesConstPtr& indices = IndicesConstPtr()) override {
+        input_ = cloud;
+        indices_ = indices;
+        mask_.assign(input_->size(), indices_ && !indices_->empty() ? 0 : 1);
+        if (indices_)
+            for (const auto i : *indices_) mask_[static_cast<std::size_t>(i)] = 1;
+    }
+};
+
 std::vector<Cluster> euclideanClusters(const cv::Mat1w& depth_mm, const Intrinsics& k,
                                        const SegmenterParams& p, const cv::Mat1b& rest) {
     const float nearTolerance_mm = p.clusterTolerance_m * kMillimetresPerMetre;
@@ -263,9 +288,25 @@ std::vector<Cluster> euclideanClusters(const cv::Mat1w& depth_mm, const Intrinsi
         depth_mm, rest & ~depthJumps(depth_mm, rest, nearTolerance_mm), k, kClusterStride_px);
     std::vector<Cluster> out;
     if (s.empty()) return out;
-    const auto cloud = cloudOf(s);
-    auto tree = pcl::make_shared<pcl::search::KdTree<pcl::PointXYZ>>();
-    tree->setInputCloud(cloud);
+    // The samples' grid as an organized cloud: PCL's organized neighbour search finds a point's
+    // neighbours in its image window, where a k-d tree had to be built over them for every
+    // frame. Only the samples are searched and clustered.
+    const int gw = (depth_mm.cols + kClusterStride_px - 1) / kClusterStride_px;
+    const int gh = (depth_mm.rows + kClusterStride_px - 1) / kClusterStride_px;
+    auto cloud = pcl::make_shared<pcl::PointCloud<pcl::PointXYZ>>(static_cast<std::uint32_t>(gw),
+                                                                  static_cast<std::uint32_t>(gh));
+    cloud->is_dense = false;
+    constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
+    for (pcl::PointXYZ& q : *cloud) q = {kNaN, kNaN, kNaN};
+    auto indices = pcl::make_shared<pcl::Indices>();
+    indices->reserve(s.size());
+    std::vector<int> sampleOf(cloud->size(), -1);
+    for (std::size_t i = 0; i < s.size(); ++i) {
+        const int at = s[i].px.y / kClusterStride_px * gw + s[i].px.x / kClusterStride_px;
+        indices->push_back(at);
+        (*cloud)[static_cast<std::size_t>(at)] = s[i].p;
+        sampleOf[static_cast<std::size_t>(at)] = static_cast<int>(i);
+    }
     pcl::EuclideanClusterExtraction<pcl::PointXYZ> extraction;
     // Samples spread apart, and readings scatter, with depth: the tolerance grows as the plane
     // tolerance does, at the median depth of what is left.
@@ -273,14 +314,15 @@ std::vector<Cluster> euclideanClusters(const cv::Mat1w& depth_mm, const Intrinsi
     extraction.setClusterTolerance(tolerance_m);
     extraction.setMinClusterSize(p.minClusterPoints);
     extraction.setMaxClusterSize(static_cast<pcl::uindex_t>(s.size()));
-    extraction.setSearchMethod(tree);
+    extraction.setSearchMethod(pcl::make_shared<GridNeighbours>(k, kClusterStride_px));
     extraction.setInputCloud(cloud);
+    extraction.setIndices(indices);
     std::vector<pcl::PointIndices> found;
     extraction.extract(found);
+    for (pcl::PointIndices& c : found)
+        for (auto& i : c.indices) i = sampleOf[static_cast<std::size_t>(i)];
 
     // Label of each sample, on the sample grid.
-    const int gw = (depth_mm.cols + kClusterStride_px - 1) / kClusterStride_px;
-    const int gh = (depth_mm.rows + kClusterStride_px - 1) / kClusterStride_px;
     cv::Mat1i grid(gh, gw, 0);
     for (std::size_t c = 0; c < found.size(); ++c)
         for (const auto i : found[c].indices) {
