@@ -254,8 +254,6 @@ cv::Mat1b depthJumps(const cv::Mat1w& depth_mm, const cv::Mat1b& rest, float flo
     return jumps;
 }
 
-// Euclidean clusters of `rest` on a stride, each grown back to every pixel of `rest` beside its
-// samples at a depth within the tolerance.
 // PCL's organized neighbour search with the camera's own projection. PCL estimates it from the
 // points it searches, a few dozen of a pyramid's grid: on a plant alone, or a flat leaf, they
 // are too few or all in one plane, the estimate goes wrong without a word and every point is
@@ -281,6 +279,8 @@ public:
     }
 };
 
+// Euclidean clusters of `rest` on a stride, each grown back to every pixel of `rest` beside its
+// samples at a depth within the tolerance.
 std::vector<Cluster> euclideanClusters(const cv::Mat1w& depth_mm, const Intrinsics& k,
                                        const SegmenterParams& p, const cv::Mat1b& rest) {
     const float nearTolerance_mm = p.clusterTolerance_m * kMillimetresPerMetre;
