@@ -4,6 +4,7 @@
 // run on each view alone; its library scored against the truth (synth/library_score.h) beside
 // the plain leaf counter (synth/leaf_counter.h); the synthetic tuft presets scored the same way.
 // Writes plant_benchmark.md and .csv into --out. Run by tools/measure.sh.
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <filesystem>
@@ -191,13 +192,18 @@ std::string csvRow(const Row& r) {
 int run(int argc, char** argv) {
     fs::path out = "docs/measurements", data = fs::path(MEADOW_SOURCE_DIR) / "../shared/data/real",
              set = fs::path(MEADOW_SOURCE_DIR) / "build/plant-bench";
-    bool quick = false, reuse = false;
+    bool quick = false, reuse = false, defaultOnly = false;
+    std::string onlySensor;
     for (int i = 1; i < argc; ++i) {
         const std::string arg = argv[i];
         if (arg == "--quick")
             quick = true;
         else if (arg == "--reuse-set")
             reuse = true;
+        else if (arg == "--default-only")
+            defaultOnly = true;
+        else if (arg == "--sensor" && i + 1 < argc)
+            onlySensor = argv[++i];
         else if (arg == "--out" && i + 1 < argc)
             out = argv[++i];
         else if (arg == "--data" && i + 1 < argc)
@@ -210,11 +216,15 @@ int run(int argc, char** argv) {
             std::cerr
                 << "usage: " << argv[0]
                 << " [--out DIR] [--data DIR] [--set DIR] [--reuse-set] [--quick] [--made TEXT]\n"
+                   "       [--sensor NAME] [--default-only]\n"
                    "  --data DIR  the shared real data (default ../shared/data/real)\n"
                    "  --set DIR   where the rendered test set goes (default build/plant-bench)\n"
                    "  --reuse-set keep the views already rendered there (same plant, sensor, "
                    "views)\n"
-                   "  --quick     two plants, four views, one sensor: a smoke run\n";
+                   "  --quick     two plants, four views, one sensor: a smoke run\n"
+                   "  --sensor NAME   that sensor's views only (kinect-v1, kinect-v2, "
+                   "realsense-d435)\n"
+                   "  --default-only  capture's default way only: no other way, no bound\n";
             return 2;
         }
     }
@@ -223,20 +233,28 @@ int run(int argc, char** argv) {
     fs::create_directories(out);
     const std::vector<std::string> plants =
         quick ? std::vector<std::string>{"v-3-1", "v-9-1"} : kPlants;
-    const std::vector<std::string> sensors =
+    std::vector<std::string> sensors =
         quick ? std::vector<std::string>{"kinect-v1"} : synth::plantSensorNames();
+    if (!onlySensor.empty()) {
+        if (std::find(sensors.begin(), sensors.end(), onlySensor) == sensors.end()) {
+            std::cerr << "plant bench: no sensor named " << onlySensor << "\n";
+            return 2;
+        }
+        sensors = {onlySensor};
+    }
     const int views = quick ? 4 : 12;
     std::vector<Row> rows;
     const fs::path scans = data / "maize-label3d";
     const bool haveScans = fs::exists(scans);
     if (!haveScans) std::cout << "plant bench: " << scans << " absent; real plants skipped\n";
-    const std::vector<Method> findings{
+    std::vector<Method> findings{
         {capture::PlantFinding::DepthMode, capture::PartitionMethod::Contour},
         {capture::PlantFinding::Clusters, capture::PartitionMethod::Contour},
         {capture::PlantFinding::Clusters, capture::PartitionMethod::StemGraph}};
+    if (defaultOnly) findings.erase(findings.begin(), findings.end() - 1);
     const auto findingName = [](const Method& m) { return m.name(); };
     // The last kind of row per sensor: the truth's own leaves, modelled (the partition's bound).
-    const std::size_t kinds = findings.size() + 1;
+    const std::size_t kinds = findings.size() + (defaultOnly ? 0 : 1);
     const auto kindName = [&](std::size_t f) {
         return f < findings.size() ? findingName(findings[f]) : std::string(kTruthLeaves);
     };
