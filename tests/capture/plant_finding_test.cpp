@@ -26,7 +26,7 @@ struct Strip {
 constexpr float kMaxRange_m = 4.f;
 
 cv::Mat1w castScene(const Intrinsics& k, const std::vector<Plane>& planes,
-                    const std::optional<Strip>& strip) {
+                    const std::vector<Strip>& strips) {
     cv::Mat1w depth = cv::Mat1w::zeros(k.height_px, k.width_px);
     for (int y = 0; y < k.height_px; ++y)
         for (int x = 0; x < k.width_px; ++x) {
@@ -40,14 +40,19 @@ cv::Mat1w castScene(const Intrinsics& k, const std::vector<Plane>& planes,
                 const float t = -p.d / along;
                 if (t > 0.f) nearest = std::min(nearest, t);
             }
-            if (strip) {
-                const float t = strip->z, px = dx * t, py = dy * t;
-                if (px >= strip->x0 && px <= strip->x1 && py >= strip->y0 && py <= strip->y1)
+            for (const Strip& strip : strips) {
+                const float t = strip.z, px = dx * t, py = dy * t;
+                if (px >= strip.x0 && px <= strip.x1 && py >= strip.y0 && py <= strip.y1)
                     nearest = std::min(nearest, t);
             }
             if (nearest <= kMaxRange_m) depth(y, x) = static_cast<std::uint16_t>(nearest * 1000);
         }
     return depth;
+}
+
+cv::Mat1w castScene(const Intrinsics& k, const std::vector<Plane>& planes,
+                    const std::optional<Strip>& strip) {
+    return castScene(k, planes, strip ? std::vector<Strip>{*strip} : std::vector<Strip>{});
 }
 
 Segmentation findIn(const cv::Mat1w& depth, const Intrinsics& k = Intrinsics::kinectV1()) {
@@ -130,6 +135,29 @@ TEST(PlantFindingScenes, AFarPlantReadByAStereoCameraStaysWhole) {
     const cv::Mat1b strip = castScene(Intrinsics::kinectV1(), {}, tallLeaf) > 0;
     ASSERT_FALSE(seg.clusterMask.empty());
     EXPECT_GE(cv::countNonZero(seg.clusterMask & strip), 0.8 * cv::countNonZero(strip));
+}
+
+// A plant the sensor broke into two pieces: a pot on the floor with the stem, and beside it,
+// 2.5 cm off to the side and 2.5 cm behind, a broad leaf's base 6 cm across with the leaf
+// going on above it, half a metre above the floor. The piece's thick base is no pot: the piece
+// joins the plant, its base too, and the plant stands on the pot that stands on the floor.
+TEST(PlantFindingScenes, APieceOfThePlantWithABroadBaseHighAboveTheFloorJoinsIt) {
+    const Intrinsics k = Intrinsics::kinectV1();
+    const Strip pot{-0.06f, 0.06f, 0.18f, 0.3f, 1.f}, stem{-0.01f, 0.01f, -0.35f, 0.18f, 1.f};
+    const Strip leafBase{0.035f, 0.095f, -0.3f, -0.24f, 1.025f};
+    const Strip leaf{0.055f, 0.075f, -0.42f, -0.3f, 1.025f};
+    const Segmentation seg =
+        findIn(castScene(k, {kFloor, kWallAhead}, std::vector<Strip>{pot, stem, leafBase, leaf}));
+    ASSERT_FALSE(seg.noPlant) << seg.noBladesReason;
+    ASSERT_FALSE(seg.clusterMask.empty());
+    for (const Strip& part : {leafBase, leaf}) {
+        const cv::Mat1b drawn = castScene(k, {}, part) > 0;
+        EXPECT_GE(cv::countNonZero(seg.clusterMask & drawn), 0.6 * cv::countNonZero(drawn))
+            << "the piece at x " << part.x0 << ".." << part.x1 << " m is the plant's";
+    }
+    // Where the plant stands: the top of the pot, row 240 + 0.18 m x 525 px / 1 m.
+    ASSERT_TRUE(seg.plantBase_px.has_value());
+    EXPECT_NEAR(seg.plantBase_px->y, 240.f + 0.18f * k.fy_px, 6.f);
 }
 
 // Grass seen from straight above stands on the ground, which faces the camera.

@@ -51,6 +51,10 @@ constexpr float kJumpSteps = 2.f;
 // A piece that joins the plant is held to less: slivers of the floor and wall beside the plant
 // lie within its reach.
 constexpr float kMaxJoinedRemnantShare = 0.2f;
+// A pot stands on the floor, a table top or the ground: its lowest reading lies within this of
+// it (a camera looking down sees its bottom rim hidden, the plane's removal takes a few cm).
+// A broad leaf's base in a piece of the plant that broke off lies well above.
+constexpr float kPotStandsWithin_m = 0.2f;
 
 float planeTolerance_m(float base_m, float z_m) {
     return base_m + kPlaneToleranceGrowth_per_m * z_m * z_m;
@@ -127,6 +131,27 @@ float planeDistance_m(const ScenePlane& c, const glm::vec3& v) {
 bool bearsThings(const ScenePlane& c) {
     const float towardsCamera = c[3] >= 0.f ? 1.f : -1.f;
     return towardsCamera * c[1] <= kMaxBearingDownLean && std::abs(c[0]) <= kMaxBearingSideLean;
+}
+
+// How far above what bears things (a floor, a table top, the ground) the nearest reading of
+// `part` lies: a pot stands on one; the thick base of a piece of leaf broken off higher up does
+// not. Infinity with nothing in view that bears things.
+float aboveBearing_m(const cv::Mat1b& part, const cv::Mat1w& depth_mm, const Intrinsics& k,
+                     const std::vector<ScenePlane>& planes) {
+    float nearest = std::numeric_limits<float>::infinity();
+    const cv::Rect box = cv::boundingRect(part);
+    for (const ScenePlane& plane : planes) {
+        if (!bearsThings(plane)) continue;
+        for (int y = box.y; y < box.y + box.height; ++y)
+            for (int x = box.x; x < box.x + box.width; ++x)
+                if (part(y, x) && depth_mm(y, x) > 0)
+                    nearest = std::min(
+                        nearest,
+                        planeDistance_m(plane,
+                                        k.backProject(static_cast<float>(x), static_cast<float>(y),
+                                                      depth_mm(y, x) / kMillimetresPerMetre)));
+    }
+    return nearest;
 }
 
 // Removes the room's large planes from `rest` (every pixel within the tolerance of one);
@@ -500,6 +525,17 @@ FoundPlant findPlant(const cv::Mat1w& depth_mm, const Intrinsics& k, const Segme
     // kLeafGap_m of the plant's join it, in turn; not what stood on something thick (a box's
     // remains) nor slivers of the floor and wall.
     Cluster& c = clusters[chosen];
+    // A thick base high above the floor is a broad leaf's, in a piece the plant broke into: no
+    // pot, and the piece's own.
+    const auto standsOnSomething = [&](const Cluster& o) {
+        return aboveBearing_m(o.pot, depth_mm, k, planes) <= kPotStandsWithin_m;
+    };
+    const auto restorePot = [&](Cluster& o) {
+        if (cv::countNonZero(o.pot) == 0 || standsOnSomething(o)) return;
+        o.mask |= o.pot;
+        o.pot.setTo(0);
+    };
+    restorePot(c);
     std::vector<char> joined(clusters.size(), 0);
     joined[chosen] = 1;
     for (bool grew = true; grew;) {
@@ -507,10 +543,12 @@ FoundPlant findPlant(const cv::Mat1w& depth_mm, const Intrinsics& k, const Segme
         for (std::size_t i = 0; i < clusters.size(); ++i) {
             const Cluster& o = clusters[i];
             if (joined[i] || o.area_px == 0 || o.meanWidth_m > p.plantMaxMeanWidth_m ||
-                o.nearPlanes > kMaxJoinedRemnantShare || cv::countNonZero(o.pot) > 0 ||
+                o.nearPlanes > kMaxJoinedRemnantShare ||
+                (cv::countNonZero(o.pot) > 0 && standsOnSomething(o)) ||
                 !boundsMeet(c, o, kLeafGap_m))
                 continue;
             joined[i] = 1;
+            restorePot(clusters[i]);
             grew = true;
             c.mask |= o.mask;
             c.pot |= o.pot;
