@@ -526,16 +526,18 @@ FoundPlant findPlant(const cv::Mat1w& depth_mm, const Intrinsics& k, const Segme
     // remains) nor slivers of the floor and wall.
     Cluster& c = clusters[chosen];
     // A thick base high above the floor is a broad leaf's, in a piece the plant broke into: no
-    // pot, and the piece's own.
-    const auto standsOnSomething = [&](const Cluster& o) {
-        return aboveBearing_m(o.pot, depth_mm, k, planes) <= kPotStandsWithin_m;
-    };
-    const auto restorePot = [&](Cluster& o) {
-        if (cv::countNonZero(o.pot) == 0 || standsOnSomething(o)) return;
+    // pot, and the piece's own. Each object's is measured once: a room leaves dozens.
+    std::vector<char> potStands(clusters.size(), 0);
+    for (std::size_t i = 0; i < clusters.size(); ++i)
+        potStands[i] = cv::countNonZero(clusters[i].pot) > 0 &&
+                       aboveBearing_m(clusters[i].pot, depth_mm, k, planes) <= kPotStandsWithin_m;
+    const auto restorePot = [&](std::size_t i) {
+        Cluster& o = clusters[i];
+        if (potStands[i] || cv::countNonZero(o.pot) == 0) return;
         o.mask |= o.pot;
         o.pot.setTo(0);
     };
-    restorePot(c);
+    restorePot(chosen);
     std::vector<char> joined(clusters.size(), 0);
     joined[chosen] = 1;
     for (bool grew = true; grew;) {
@@ -543,12 +545,11 @@ FoundPlant findPlant(const cv::Mat1w& depth_mm, const Intrinsics& k, const Segme
         for (std::size_t i = 0; i < clusters.size(); ++i) {
             const Cluster& o = clusters[i];
             if (joined[i] || o.area_px == 0 || o.meanWidth_m > p.plantMaxMeanWidth_m ||
-                o.nearPlanes > kMaxJoinedRemnantShare ||
-                (cv::countNonZero(o.pot) > 0 && standsOnSomething(o)) ||
+                o.nearPlanes > kMaxJoinedRemnantShare || potStands[i] ||
                 !boundsMeet(c, o, kLeafGap_m))
                 continue;
             joined[i] = 1;
-            restorePot(clusters[i]);
+            restorePot(i);
             grew = true;
             c.mask |= o.mask;
             c.pot |= o.pot;
