@@ -138,19 +138,19 @@ bool bearsThings(const ScenePlane& c) {
 // not. Infinity with nothing in view that bears things.
 float aboveBearing_m(const cv::Mat1b& part, const cv::Mat1w& depth_mm, const Intrinsics& k,
                      const std::vector<ScenePlane>& planes) {
+    std::vector<ScenePlane> bearing;
+    std::copy_if(planes.begin(), planes.end(), std::back_inserter(bearing), bearsThings);
     float nearest = std::numeric_limits<float>::infinity();
+    if (bearing.empty()) return nearest;
     const cv::Rect box = cv::boundingRect(part);
-    for (const ScenePlane& plane : planes) {
-        if (!bearsThings(plane)) continue;
-        for (int y = box.y; y < box.y + box.height; ++y)
-            for (int x = box.x; x < box.x + box.width; ++x)
-                if (part(y, x) && depth_mm(y, x) > 0)
-                    nearest = std::min(
-                        nearest,
-                        planeDistance_m(plane,
-                                        k.backProject(static_cast<float>(x), static_cast<float>(y),
-                                                      depth_mm(y, x) / kMillimetresPerMetre)));
-    }
+    for (int y = box.y; y < box.y + box.height; ++y)
+        for (int x = box.x; x < box.x + box.width; ++x) {
+            if (!part(y, x) || depth_mm(y, x) == 0) continue;
+            const glm::vec3 v = k.backProject(static_cast<float>(x), static_cast<float>(y),
+                                              depth_mm(y, x) / kMillimetresPerMetre);
+            for (const ScenePlane& plane : bearing)
+                nearest = std::min(nearest, planeDistance_m(plane, v));
+        }
     return nearest;
 }
 
@@ -533,7 +533,7 @@ FoundPlant findPlant(const cv::Mat1w& depth_mm, const Intrinsics& k, const Segme
                        aboveBearing_m(clusters[i].pot, depth_mm, k, planes) <= kPotStandsWithin_m;
     const auto restorePot = [&](std::size_t i) {
         Cluster& o = clusters[i];
-        if (potStands[i] || cv::countNonZero(o.pot) == 0) return;
+        if (potStands[i]) return;
         o.mask |= o.pot;
         o.pot.setTo(0);
     };
