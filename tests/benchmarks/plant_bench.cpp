@@ -224,7 +224,8 @@ int run(int argc, char** argv) {
                    "  --quick     two plants, four views, one sensor: a smoke run\n"
                    "  --sensor NAME   that sensor's views only (kinect-v1, kinect-v2, "
                    "realsense-d435)\n"
-                   "  --default-only  capture's default way only: no other way, no bound\n";
+                   "  --default-only  only the way --subject potted-plant sets: no other way, no "
+                   "bound\n";
             return 2;
         }
     }
@@ -251,7 +252,13 @@ int run(int argc, char** argv) {
         {capture::PlantFinding::DepthMode, capture::PartitionMethod::Contour},
         {capture::PlantFinding::Clusters, capture::PartitionMethod::Contour},
         {capture::PlantFinding::Clusters, capture::PartitionMethod::StemGraph}};
-    if (defaultOnly) findings.erase(findings.begin(), findings.end() - 1);
+    if (defaultOnly) {  // the way --subject potted-plant sets, whatever the order above
+        capture::SegmenterParams potted;
+        potted.setSubject(capture::Subject::PottedPlant);
+        std::erase_if(findings, [&](const Method& m) {
+            return m.finding != potted.plantFinding || m.partition != potted.partition;
+        });
+    }
     const auto findingName = [](const Method& m) { return m.name(); };
     // The last kind of row per sensor: the truth's own leaves, modelled (the partition's bound).
     const std::size_t kinds = findings.size() + (defaultOnly ? 0 : 1);
