@@ -7,6 +7,7 @@
 #include <limits>
 #include <opencv2/core.hpp>
 #include <optional>
+#include <string>
 #include <vector>
 
 #include "meadow/capture/segmenter.h"
@@ -86,6 +87,20 @@ TEST(PlantFindingScenes, AThinStripWithOnlyWallsBesideItIsNoPlant) {
         << seg.noBladesReason;
     // The walls alone are no plant either, for the usual reason.
     EXPECT_TRUE(findIn(castScene(k, {left, right}, std::nullopt)).noPlant);
+}
+
+// A board 12 cm wide standing on the floor is no plant, and the reason says by how much the
+// largest object misses a leaf's width, so a user whose plant was not found sees what to change.
+// (Parts are measured where the board is left once its thick base, taken for a pot, is off.)
+TEST(PlantFindingScenes, AWideBoardIsNoPlantAndTheReasonGivesItsWidth) {
+    const Strip board{-0.06f, 0.06f, -0.2f, 0.3f, 1.f};
+    const Segmentation seg = findIn(castScene(Intrinsics::kinectV1(), {kFloor, kWallAhead}, board));
+    EXPECT_TRUE(seg.noPlant);
+    const std::string said = "the largest, 0.47 m tall at 1 m, is made of parts ";
+    const auto at = seg.noBladesReason.find(said);
+    ASSERT_NE(at, std::string::npos) << seg.noBladesReason;
+    EXPECT_GT(std::stof(seg.noBladesReason.substr(at + said.size())), 4.f) << seg.noBladesReason;
+    EXPECT_NE(seg.noBladesReason.find("cm wide (leaves: under 4 cm)"), std::string::npos);
 }
 
 // A wide-angle camera (a RealSense D435's 848 x 480 at 430 px focal length, 89 degrees across)

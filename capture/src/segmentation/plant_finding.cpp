@@ -458,6 +458,9 @@ FoundPlant findPlant(const cv::Mat1w& depth_mm, const Intrinsics& k, const Segme
     // against the far wall, a shelf's), or the camera looks where no foot can be found.
     const bool bearingInView = std::any_of(planes.begin(), planes.end(), bearsThings);
     int unborne = 0;  // thin and large enough, but nothing in view to stand on
+    // Why the largest object is not a plant, for a user whose plant was not found.
+    std::string largestUnlike;
+    int largestArea_px = 0;
     for (std::size_t i = 0; i < clusters.size(); ++i) {
         Cluster& c = clusters[i];
         // A pot, a box on the floor, a chair's seat: what stands thick on its bottom goes first,
@@ -469,8 +472,23 @@ FoundPlant findPlant(const cv::Mat1w& depth_mm, const Intrinsics& k, const Segme
         if (c.area_px == 0) continue;
         const PartShape shape = partShape(c.mask, c.medianDepth_m, k, true, whole);
         c.meanWidth_m = shape.width_m;
-        if (unlikeLeafParts(shape, p).empty() && c.height_m >= p.plantMinHeight_m &&
-            c.area_px >= minArea_px && c.nearPlanes <= kMaxRemnantShare) {
+        const std::string unlike = unlikeLeafParts(shape, p);
+        if (c.area_px > largestArea_px) {
+            largestArea_px = c.area_px;
+            std::ostringstream why;
+            why.precision(2);
+            why << "the largest, " << c.height_m << " m tall at " << c.medianDepth_m << " m, ";
+            if (!unlike.empty())
+                why << "is " << unlike;
+            else if (c.nearPlanes > kMaxRemnantShare)
+                why << "lies along the floor or a wall (what their removal left)";
+            else if (c.height_m < p.plantMinHeight_m || c.area_px < minArea_px)
+                why << "is too small (" << c.area_px << " px; a plant: at least " << minArea_px
+                    << " px and " << p.plantMinHeight_m * 100 << " cm tall)";
+            largestUnlike = why.str();
+        }
+        if (unlike.empty() && c.height_m >= p.plantMinHeight_m && c.area_px >= minArea_px &&
+            c.nearPlanes <= kMaxRemnantShare) {
             // A plant put before the camera is seen up to its top leaves; what goes on above
             // the view (a door's frame, a curtain, a lamp's pole) is the room's.
             if (runsOffTop(c.mask, sensed)) {
@@ -497,6 +515,7 @@ FoundPlant findPlant(const cv::Mat1w& depth_mm, const Intrinsics& k, const Segme
             why << clusters.size() << " object(s) stand apart from the floor and walls, none "
                 << "large enough and made of parts under " << p.plantMaxMeanWidth_m * 100
                 << " cm wide and " << kMinLeafElongation << " times as long, as leaves are";
+        if (!largestUnlike.empty() && largestUnlike.back() != ' ') why << "; " << largestUnlike;
         if (offTop > 0)
             why << "; " << offTop << " that run(s) off the top of the view (a plant too near "
                 << "the camera, or a pole or frame of the room)";
