@@ -472,23 +472,27 @@ FoundPlant findPlant(const cv::Mat1w& depth_mm, const Intrinsics& k, const Segme
         if (c.area_px == 0) continue;
         const PartShape shape = partShape(c.mask, c.medianDepth_m, k, true, whole);
         c.meanWidth_m = shape.width_m;
-        const std::string unlike = unlikeLeafParts(shape, p);
+        // What keeps it from being a plant, empty when nothing does.
+        std::ostringstream why;
+        why.precision(2);
+        if (const std::string parts = unlikeLeafParts(shape, p); !parts.empty())
+            why << "is " << parts;
+        else if (c.nearPlanes > kMaxRemnantShare)
+            why << "lies along the floor or a wall (what their removal left)";
+        else if (c.height_m < p.plantMinHeight_m || c.area_px < minArea_px)
+            why << "is too small (" << c.area_px << " px; a plant: at least " << minArea_px
+                << " px and " << p.plantMinHeight_m * 100 << " cm tall)";
+        const std::string unlike = why.str();
         if (c.area_px > largestArea_px) {
             largestArea_px = c.area_px;
-            std::ostringstream why;
-            why.precision(2);
-            why << "the largest, " << c.height_m << " m tall at " << c.medianDepth_m << " m, ";
+            std::ostringstream largest;
+            largest.precision(2);
             if (!unlike.empty())
-                why << "is " << unlike;
-            else if (c.nearPlanes > kMaxRemnantShare)
-                why << "lies along the floor or a wall (what their removal left)";
-            else if (c.height_m < p.plantMinHeight_m || c.area_px < minArea_px)
-                why << "is too small (" << c.area_px << " px; a plant: at least " << minArea_px
-                    << " px and " << p.plantMinHeight_m * 100 << " cm tall)";
-            largestUnlike = why.str();
+                largest << "the largest, " << c.height_m << " m tall at " << c.medianDepth_m
+                        << " m, " << unlike;
+            largestUnlike = largest.str();
         }
-        if (unlike.empty() && c.height_m >= p.plantMinHeight_m && c.area_px >= minArea_px &&
-            c.nearPlanes <= kMaxRemnantShare) {
+        if (unlike.empty()) {
             // A plant put before the camera is seen up to its top leaves; what goes on above
             // the view (a door's frame, a curtain, a lamp's pole) is the room's.
             if (runsOffTop(c.mask, sensed)) {
@@ -515,7 +519,7 @@ FoundPlant findPlant(const cv::Mat1w& depth_mm, const Intrinsics& k, const Segme
             why << clusters.size() << " object(s) stand apart from the floor and walls, none "
                 << "large enough and made of parts under " << p.plantMaxMeanWidth_m * 100
                 << " cm wide and " << kMinLeafElongation << " times as long, as leaves are";
-        if (!largestUnlike.empty() && largestUnlike.back() != ' ') why << "; " << largestUnlike;
+        if (!largestUnlike.empty()) why << "; " << largestUnlike;
         if (offTop > 0)
             why << "; " << offTop << " that run(s) off the top of the view (a plant too near "
                 << "the camera, or a pole or frame of the room)";
