@@ -175,6 +175,28 @@ TEST(PlantFindingScenes, APieceOfThePlantWithABroadBaseHighAboveTheFloorJoinsIt)
     EXPECT_NEAR(seg.plantBase_px->y, 240.f + 0.18f * k.fy_px, 6.f);
 }
 
+// A broad leaf hanging before the stem, 2.5 cm nearer and 2.5 cm to the side, is the piece
+// nearest the view's centre; the rest of the plant (pot, stem, a leaf reaching left) lies off
+// to the left. The rest is larger and stands in the pot: it is the plant the piece belongs to,
+// and it joins, pot and all.
+TEST(PlantFindingScenes, ThePlantInItsPotJoinsTheLeafPieceTheCameraIsAimedAt) {
+    const Intrinsics k = Intrinsics::kinectV1();
+    const Strip pot{-0.09f, 0.03f, 0.18f, 0.3f, 1.f}, stem{-0.04f, -0.02f, -0.35f, 0.18f, 1.f};
+    const Strip arm{-0.3f, -0.02f, -0.36f, -0.34f, 1.f}, hanging{-0.3f, -0.28f, -0.36f, 0.f, 1.f};
+    const Strip piece{0.005f, 0.035f, -0.25f, 0.1f, 0.975f};
+    const Segmentation seg = findIn(
+        castScene(k, {kFloor, kWallAhead}, std::vector<Strip>{pot, stem, arm, hanging, piece}));
+    ASSERT_FALSE(seg.noPlant) << seg.noBladesReason;
+    ASSERT_FALSE(seg.clusterMask.empty());
+    for (const Strip& part : {piece, stem, hanging}) {
+        const cv::Mat1b drawn = castScene(k, {}, part) > 0;
+        EXPECT_GE(cv::countNonZero(seg.clusterMask & drawn), 0.6 * cv::countNonZero(drawn))
+            << "the part at x " << part.x0 << ".." << part.x1 << " m is the plant's";
+    }
+    ASSERT_TRUE(seg.plantBase_px.has_value());
+    EXPECT_NEAR(seg.plantBase_px->y, 240.f + 0.18f * k.fy_px, 6.f) << "it stands on its pot";
+}
+
 // Grass seen from straight above stands on the ground, which faces the camera.
 TEST(PlantFindingScenes, AThinStripBeforeTheGroundSeenFromAboveIsAPlant) {
     const Plane groundBelow{0.f, 0.f, -1.f, 1.2f};

@@ -563,15 +563,25 @@ FoundPlant findPlant(const cv::Mat1w& depth_mm, const Intrinsics& k, const Segme
     restorePot(chosen);
     std::vector<char> joined(clusters.size(), 0);
     joined[chosen] = 1;
+    // A plant stands in one pot. Where the piece aimed at stands in none (a broad leaf before
+    // the stem, broken off by the depth jumps around it), a larger thin object beside it that
+    // does is the rest of the plant; a smaller one, a box's remains.
+    bool standsInPot = potStands[chosen] != 0;
+    const int pieceArea_px = c.area_px;
+    std::vector<char> isThin(clusters.size(), 0);
+    for (const std::size_t i : thin) isThin[i] = 1;
     for (bool grew = true; grew;) {
         grew = false;
         for (std::size_t i = 0; i < clusters.size(); ++i) {
             const Cluster& o = clusters[i];
+            const bool plantsPot =
+                potStands[i] && !standsInPot && isThin[i] && o.area_px > pieceArea_px;
             if (joined[i] || o.area_px == 0 || o.meanWidth_m > p.plantMaxMeanWidth_m ||
-                o.nearPlanes > kMaxJoinedRemnantShare || potStands[i] ||
+                o.nearPlanes > kMaxJoinedRemnantShare || (potStands[i] && !plantsPot) ||
                 !boundsMeet(c, o, kLeafGap_m))
                 continue;
             joined[i] = 1;
+            standsInPot = standsInPot || plantsPot;
             restorePot(i);
             grew = true;
             c.mask |= o.mask;
