@@ -98,6 +98,35 @@ TEST(StemPartition, TheStemRunsOnToItsLeavesWhereALeafGoesOnMoreStraightly) {
     }
 }
 
+// A broad stem (a grown maize shoot's, wrapped in sheaths: 21 px) that leaves leave on
+// alternate sides every 14 px, closer than the stem is wide. The junctions they make are each a
+// short bridge from the next, but they are as many nodes as leaves, not one: the stem runs up
+// past them, and every leaf comes out whole, on its own.
+TEST(StemPartition, LeavesLeavingABroadStemCloseTogetherEachLeaveItAtTheirOwnNode) {
+    cv::Mat1b mask = cv::Mat1b::zeros(240, 240);
+    cv::line(mask, {120, 225}, {120, 100}, 255, 21);
+    std::vector<DrawnLeaf> leaves;
+    for (int i = 0; i < 5; ++i) {
+        const int y = 170 - 14 * i, side = i % 2 == 0 ? -1 : 1;
+        leaves.push_back({{120, y}, {120 + side * 90, y - 80}});
+    }
+    leaves.push_back({{120, 100}, {124, 10}});  // the top leaf, where the stem ends
+    for (const DrawnLeaf& leaf : leaves) cv::line(mask, leaf.from, leaf.tip, 255, 7);
+    const Segmentation seg = segmentByStem(mask);
+    ASSERT_EQ(seg.clusters.size(), 1u) << seg.summary();
+    const std::vector<cv::Point>& stem = seg.clusters[0].stemLine_px;
+    ASSERT_GE(stem.size(), 2u) << seg.summary();
+    EXPECT_LE(stem.back().y, 145) << "the stem runs up past the lowest leaves to " << stem.back();
+    for (const DrawnLeaf& leaf : leaves) {
+        const auto ends = [&](const BladeContour& b) {
+            return cv::norm(b.contour_px[static_cast<std::size_t>(b.tipIndex)] - leaf.tip) <= 8.0;
+        };
+        EXPECT_EQ(std::count_if(seg.blades.begin(), seg.blades.end(), ends), 1)
+            << "one blade ends at " << leaf.tip << "\n"
+            << seg.summary();
+    }
+}
+
 // The mask and depth of drawn blades, cut by the stem.
 Segmentation segmentDrawnByStem(const drawn::Scene& scene) {
     SegmenterParams params;

@@ -13,6 +13,7 @@ namespace meadow::capture::segmentation {
 namespace {
 
 constexpr int kNone = -1;
+constexpr int kCrossingEnds = 4;  // two leaves crossing
 const cv::Point kNeighbours[8] = {{0, -1},  {-1, 0}, {1, 0},  {0, 1},
                                   {-1, -1}, {1, -1}, {-1, 1}, {1, 1}};
 
@@ -233,6 +234,32 @@ void mergeCloseJunctions(SkeletonGraph& graph, const cv::Mat1f& halfWidth_px) {
                 parent[static_cast<std::size_t>(parent[static_cast<std::size_t>(n)])];
         return n;
     };
+    // One crossing is what a merged junction may hold: no wider than the mask there, or two
+    // leaves crossing at a sharp angle (four edges leave it, over a span the crossing draws
+    // out). Junctions chained up a broad stem, each a short bridge from the next (leaves leave
+    // it every few cm), would make one node the length of the stem with every leaf leaving it
+    // at the plant's foot; they stay apart. Where the plant stands, a pot's rim and the stem's
+    // foot thin into a tangle wider than the stem: all of it is the root.
+    std::vector<std::vector<int>> members(graph.nodes.size());
+    std::vector<int> ends(graph.nodes.size());
+    for (std::size_t n = 0; n < graph.nodes.size(); ++n) {
+        members[n] = {static_cast<int>(n)};
+        ends[n] = static_cast<int>(graph.nodes[n].ends.size());
+    }
+    const auto withinWidth = [&](int a, int b) {
+        const auto& ma = members[static_cast<std::size_t>(a)];
+        const auto& mb = members[static_cast<std::size_t>(b)];
+        float width = 0.f, span = 0.f;
+        for (const auto* set : {&ma, &mb})
+            for (const int m : *set) width = std::max(width, widthAt(m));
+        for (const int i : ma)
+            for (const int j : mb)
+                span = std::max(
+                    span,
+                    static_cast<float>(cv::norm(graph.nodes[static_cast<std::size_t>(i)].centre -
+                                                graph.nodes[static_cast<std::size_t>(j)].centre)));
+        return span < width;
+    };
     std::vector<bool> absorbed(graph.edges.size(), false);
     for (std::size_t e = 0; e < graph.edges.size(); ++e) {
         const SkeletonEdge& edge = graph.edges[e];
@@ -241,7 +268,16 @@ void mergeCloseJunctions(SkeletonGraph& graph, const cv::Mat1f& halfWidth_px) {
         if (bridge >= std::max(widthAt(edge.from), widthAt(edge.to))) continue;
         const int a = find(edge.from), b = find(edge.to);
         if (a == b) continue;
+        const int root = graph.rootNode == kNone ? kNone : find(graph.rootNode);
+        const int endsMerged =
+            ends[static_cast<std::size_t>(a)] + ends[static_cast<std::size_t>(b)] - 2;
+        if (a != root && b != root && endsMerged > kCrossingEnds && !withinWidth(a, b)) continue;
         parent[static_cast<std::size_t>(b)] = a;
+        ends[static_cast<std::size_t>(a)] = endsMerged;
+        auto& into = members[static_cast<std::size_t>(a)];
+        auto& from = members[static_cast<std::size_t>(b)];
+        into.insert(into.end(), from.begin(), from.end());
+        from.clear();
         absorbed[e] = true;
     }
     if (std::none_of(absorbed.begin(), absorbed.end(), [](bool x) { return x; })) return;

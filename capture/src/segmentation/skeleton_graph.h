@@ -41,8 +41,9 @@ SkeletonGraph skeletonGraph(const cv::Mat1b& skeleton, cv::Point root);
 int removeSpurs(cv::Mat1b& skeleton, cv::Point root, float minLength_px);
 
 // Merges junctions joined by an edge shorter than the mask's width there: two leaves crossing
-// at an angle thin to two junctions a short bridge apart, not to one. `halfWidth_px` is the
-// distance transform of the mask (distance to its edge).
+// at an angle thin to two junctions a short bridge apart, not to one. A merged junction holds
+// one crossing (it spans no more than the mask's width, or four edges leave it); at the root
+// any tangle merges. `halfWidth_px` is the distance transform of the mask (distance to its edge).
 void mergeCloseJunctions(SkeletonGraph& graph, const cv::Mat1f& halfWidth_px);
 
 struct StrandParams {
