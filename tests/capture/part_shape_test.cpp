@@ -90,6 +90,20 @@ TEST(PartShape, ATableIsTooWide) {
     EXPECT_NE(unlikeLeaves(table).find("cm wide"), std::string::npos) << unlikeLeaves(table);
 }
 
+// A grown maize shoot's leaves (7-13 cm across) measure wider than a grass's, but the plant's
+// parts are many times longer over their width (22-115 on the plant bench) than a table's on
+// its legs (about 9) or a board's: up to half as wide again as the limit, that length decides.
+TEST(PartShape, BroadPartsAreLeavesOnlyWhenTheyAreLong) {
+    const SegmenterParams params;
+    const float broad = 1.3f * params.plantMaxMeanWidth_m;
+    EXPECT_EQ(seg::unlikeLeafParts({broad, 30.f}, params), "");
+    EXPECT_NE(seg::unlikeLeafParts({broad, 9.f}, params).find("cm wide"), std::string::npos);
+    EXPECT_NE(
+        seg::unlikeLeafParts({1.6f * params.plantMaxMeanWidth_m, 100.f}, params).find("cm wide"),
+        std::string::npos);
+    EXPECT_EQ(seg::unlikeLeafParts({0.9f * params.plantMaxMeanWidth_m, 9.f}, params), "");
+}
+
 // A tray of lettuce seen from above: six heads 13 cm across apart from each other, each a
 // rosette of eight broad leaves (ellipses 7 x 4.9 cm, their centres 3 cm out) that overlap
 // into a lobed disc. Taken together their lengths add up to a long strip's; each is round.

@@ -86,6 +86,11 @@ struct PartShape {
 // Leaves are many times longer than wide (a maize leaf 10-20 times, a grass blade 30 or more);
 // a cushion, an arm, a chair's back or a lettuce head is not.
 inline constexpr float kMinLeafElongation = 5.f;
+// Parts up to this share wider than SegmenterParams::plantMaxMeanWidth_m are a broad-leaved
+// plant's when at least kBroadLeafMinElongation times as long as wide (a grown maize shoot:
+// 22-115 on the plant bench; a table on legs about 9, a board or a box 3-5).
+inline constexpr float kBroadLeafWidthShare = 1.5f;
+inline constexpr float kBroadLeafMinElongation = 20.f;
 // `fillHoles`: holes up to 3 cm across are filled first (a depth slice of a solid object is
 // riddled with them; the clusters of PlantFinding::Clusters are grown back over them).
 // `cutFrom`: the object `mask` was cut from (its base taken off), in which the distances to the
@@ -96,9 +101,11 @@ PartShape partShape(const cv::Mat1b& mask, float depth_m, const Intrinsics& intr
 // opening by a disc 3.5 cm across keeps that holds its lowest rows, from its bottom up to 1.3
 // times its width there, and a rim of 2 px. Frame-sized; empty where there is none.
 cv::Mat1b thickBase(const cv::Mat1b& mask, float depth_m, const Intrinsics& intrinsics);
-// How parts of `shape` differ from leaves ("made of parts 7.3 cm wide (leaves: under 4 cm)"),
-// or empty when they are at most SegmenterParams::plantMaxMeanWidth_m thick and, by area, at
-// least kMinLeafElongation times longer than wide.
+// How parts of `shape` differ from leaves ("made of parts 7.3 cm wide (leaves: under 4 cm, or
+// 6 cm when 20 times as long)"), or empty when they are at most
+// SegmenterParams::plantMaxMeanWidth_m thick (kBroadLeafWidthShare times that when
+// kBroadLeafMinElongation times as long) and, by area, at least kMinLeafElongation times longer
+// than wide.
 std::string unlikeLeafParts(const PartShape& shape, const SegmenterParams& params);
 // How `mask`, its thick base (thickBase) taken off, differs from a plant's leaves: "thick
 // throughout" when under a tenth of it is left, else unlikeLeafParts at its median depth; empty
