@@ -261,17 +261,20 @@ void mergeCloseJunctions(SkeletonGraph& graph, const cv::Mat1f& halfWidth_px) {
         return span < width;
     };
     std::vector<bool> absorbed(graph.edges.size(), false);
-    for (std::size_t e = 0; e < graph.edges.size(); ++e) {
+    // Merges the junctions edge `e` bridges, if it is short; `atRoot`: only where one of them is
+    // (in) the root, else only where neither is. Returns whether it merged.
+    const auto merge = [&](std::size_t e, bool atRoot) {
         const SkeletonEdge& edge = graph.edges[e];
-        if (edge.from == edge.to || !isJunction(edge.from) || !isJunction(edge.to)) continue;
+        if (absorbed[e] || edge.from == edge.to || !isJunction(edge.from) || !isJunction(edge.to))
+            return false;
         const float bridge = static_cast<float>(edge.pixels.size() + 1);
-        if (bridge >= std::max(widthAt(edge.from), widthAt(edge.to))) continue;
+        if (bridge >= std::max(widthAt(edge.from), widthAt(edge.to))) return false;
         const int a = find(edge.from), b = find(edge.to);
-        if (a == b) continue;
         const int root = graph.rootNode == kNone ? kNone : find(graph.rootNode);
+        if (a == b || atRoot != (a == root || b == root)) return false;
         const int endsMerged =
             ends[static_cast<std::size_t>(a)] + ends[static_cast<std::size_t>(b)] - 2;
-        if (a != root && b != root && endsMerged > kCrossingEnds && !withinWidth(a, b)) continue;
+        if (!atRoot && endsMerged > kCrossingEnds && !withinWidth(a, b)) return false;
         parent[static_cast<std::size_t>(b)] = a;
         ends[static_cast<std::size_t>(a)] = endsMerged;
         auto& into = members[static_cast<std::size_t>(a)];
@@ -279,7 +282,15 @@ void mergeCloseJunctions(SkeletonGraph& graph, const cv::Mat1f& halfWidth_px) {
         into.insert(into.end(), from.begin(), from.end());
         from.clear();
         absorbed[e] = true;
+        return true;
+    };
+    // The root's tangle first, until no short bridge leaves it (whatever the edges' order), then
+    // the crossings.
+    for (bool grew = true; grew;) {
+        grew = false;
+        for (std::size_t e = 0; e < graph.edges.size(); ++e) grew = merge(e, true) || grew;
     }
+    for (std::size_t e = 0; e < graph.edges.size(); ++e) merge(e, false);
     if (std::none_of(absorbed.begin(), absorbed.end(), [](bool x) { return x; })) return;
 
     // Rebuild: one node per set, the bridges' pixels part of it, the other edges renumbered.
