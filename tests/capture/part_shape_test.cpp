@@ -97,7 +97,9 @@ TEST(PartShape, BroadPartsAreLeavesOnlyWhenTheyAreLong) {
     const SegmenterParams params;
     const float broad = 1.3f * params.plantMaxMeanWidth_m;
     EXPECT_EQ(seg::unlikeLeafParts({broad, 30.f}, params), "");
-    EXPECT_NE(seg::unlikeLeafParts({broad, 9.f}, params).find("cm wide"), std::string::npos);
+    EXPECT_NE(seg::unlikeLeafParts({broad, 9.f}, params).find("cm wide and 9 times as long"),
+              std::string::npos)
+        << seg::unlikeLeafParts({broad, 9.f}, params);
     EXPECT_NE(
         seg::unlikeLeafParts({1.6f * params.plantMaxMeanWidth_m, 100.f}, params).find("cm wide"),
         std::string::npos);

@@ -122,12 +122,14 @@ std::string unlikeLeafParts(const PartShape& shape, const SegmenterParams& param
     // many and long: its parts, by area, are far longer over their width than furniture's.
     const bool broadLeaves = shape.width_m <= kBroadLeafWidthShare * params.plantMaxMeanWidth_m &&
                              shape.elongation >= kBroadLeafMinElongation;
-    if (shape.width_m > params.plantMaxMeanWidth_m && !broadLeaves)
-        why << "made of parts " << shape.width_m * 100 << " cm wide (leaves: under "
-            << params.plantMaxMeanWidth_m * 100 << " cm, or "
+    if (shape.width_m > params.plantMaxMeanWidth_m && !broadLeaves) {
+        why << "made of parts " << shape.width_m * 100 << " cm wide";
+        if (shape.width_m <= kBroadLeafWidthShare * params.plantMaxMeanWidth_m)
+            why << " and " << shape.elongation << " times as long";
+        why << " (leaves: under " << params.plantMaxMeanWidth_m * 100 << " cm, or "
             << kBroadLeafWidthShare * params.plantMaxMeanWidth_m * 100 << " cm when "
             << kBroadLeafMinElongation << " times as long)";
-    else if (shape.elongation < kMinLeafElongation)
+    } else if (shape.elongation < kMinLeafElongation)
         why << shape.elongation << " times as long as it is wide (leaves: over "
             << kMinLeafElongation << ")";
     return why.str();
