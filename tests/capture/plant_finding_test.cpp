@@ -105,6 +105,23 @@ TEST(PlantFindingScenes, AWideBoardIsNoPlantAndTheReasonGivesItsWidth) {
         << seg.noBladesReason;
 }
 
+// A young plant seen from too far covers less of the view than a plant must (but over half of
+// it; the floor's removal takes its lowest 3 cm), beside a board that is larger but too wide:
+// the reason names the board as the largest object, the small thin one as what may be the
+// plant, and what to do.
+TEST(PlantFindingScenes, AThinObjectOnlyTooSmallIsNamedWithWhatToDo) {
+    const Strip board{0.15f, 0.27f, -0.2f, 0.3f, 1.2f};
+    const Strip young{-0.01f, 0.01f, 0.03f, 0.3f, 1.f};
+    const Segmentation seg = findIn(
+        castScene(Intrinsics::kinectV1(), {kFloor, kWallAhead}, std::vector<Strip>{board, young}));
+    EXPECT_TRUE(seg.noPlant);
+    EXPECT_NE(seg.noBladesReason.find("the largest, "), std::string::npos) << seg.noBladesReason;
+    EXPECT_NE(seg.noBladesReason.find("the largest thin one, 0.24 m tall at 1 m, is too small"),
+              std::string::npos)
+        << seg.noBladesReason;
+    EXPECT_NE(seg.noBladesReason.find("bring the camera closer"), std::string::npos);
+}
+
 // A wide-angle camera (a RealSense D435's 848 x 480 at 430 px focal length, 89 degrees across)
 // sees a strip 60 cm tall at the same distance on fewer pixels, and a smaller share of its image
 // (0.5 % against 1.2 %, under the 0.8 % a plant covers): the angle it covers keeps it, so both

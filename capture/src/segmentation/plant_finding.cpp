@@ -461,6 +461,10 @@ FoundPlant findPlant(const cv::Mat1w& depth_mm, const Intrinsics& k, const Segme
     // Why the largest object is not a plant, for a user whose plant was not found.
     std::string largestUnlike;
     int largestArea_px = 0;
+    // And the largest object only too small to be one: a plant too far away, most likely, once
+    // it covers half the least a plant does.
+    std::string largestSmall;
+    int largestSmallArea_px = minArea_px / 2;
     for (std::size_t i = 0; i < clusters.size(); ++i) {
         Cluster& c = clusters[i];
         // A pot, a box on the floor, a chair's seat: what stands thick on its bottom goes first,
@@ -479,9 +483,18 @@ FoundPlant findPlant(const cv::Mat1w& depth_mm, const Intrinsics& k, const Segme
             why << "is " << parts;
         else if (c.nearPlanes > kMaxRemnantShare)
             why << "lies along the floor or a wall (what their removal left)";
-        else if (c.height_m < p.plantMinHeight_m || c.area_px < minArea_px)
+        else if (c.height_m < p.plantMinHeight_m || c.area_px < minArea_px) {
             why << "is too small (" << c.area_px << " px; a plant: at least " << minArea_px
                 << " px and " << p.plantMinHeight_m * 100 << " cm tall)";
+            if (c.area_px > largestSmallArea_px) {
+                largestSmallArea_px = c.area_px;
+                std::ostringstream small;
+                small.precision(2);
+                small << "the largest thin one, " << c.height_m << " m tall at " << c.medianDepth_m
+                      << " m, " << why.str() << ": bring the camera closer if it is the plant";
+                largestSmall = small.str();
+            }
+        }
         const std::string unlike = why.str();
         if (c.area_px > largestArea_px) {
             largestArea_px = c.area_px;
@@ -520,6 +533,8 @@ FoundPlant findPlant(const cv::Mat1w& depth_mm, const Intrinsics& k, const Segme
                 << "large enough and made of parts under " << p.plantMaxMeanWidth_m * 100
                 << " cm wide and " << kMinLeafElongation << " times as long, as leaves are";
         if (!largestUnlike.empty()) why << "; " << largestUnlike;
+        if (!largestSmall.empty() && largestUnlike.find(" is too small") == std::string::npos)
+            why << "; " << largestSmall;
         if (offTop > 0)
             why << "; " << offTop << " that run(s) off the top of the view (a plant too near "
                 << "the camera, or a pole or frame of the room)";
