@@ -60,11 +60,12 @@ std::ostream& operator<<(std::ostream& out, const Score& s) {
 // The sensor noise these bounds were set on: frame 0 drawn with the seed itself.
 std::uint64_t boundNoiseSeed(std::uint64_t seed, int) { return seed; }
 
-Score run(const std::string& preset, float distance_m, std::uint64_t seed) {
+Score run(const std::string& preset, float distance_m, std::uint64_t seed,
+          const capture::SegmenterParams& params = {}) {
     const synth::RenderedTuft tuft =
         synth::renderTuft(preset, 1.f, seed, distance_m, 1, {}, boundNoiseSeed);
     const capture::DepthFrame& frame = tuft.frames.front();
-    const capture::Segmentation seg = capture::Segmenter().segment(frame);
+    const capture::Segmentation seg = capture::Segmenter(params).segment(frame);
     Score score;
     score.truth = static_cast<int>(tuft.tuft.blades.size());
     for (std::size_t index = 0; index < seg.blades.size(); ++index) {
@@ -106,6 +107,26 @@ TEST(ModelingAccuracy, LeafBladesAreRootedAtTheirTrueRootAtNominalNoise) {
         EXPECT_LE(leaves.tipRms_mm(), kMaxLeafTipRms_mm) << "leaves: " << leaves;
         EXPECT_LE(leaves.meanWidthFraction(), kMaxWidthMaeFraction) << "leaves: " << leaves;
         EXPECT_GE(3 * all.fitted, all.truth) << "all: " << all;
+    }
+}
+
+// A grass tuft in a pot is captured with --subject potted-plant: cut by the stem graph, its
+// blades fan from the foot, the tangle of skeleton junctions where they meet. Their heights
+// come out 11-19 % off (mean, per seed), against the contour partition's 5 % above; a foot
+// that loses blades' bases (junctions near it merged into a short stem) made it 20-27 %.
+constexpr float kMaxStemGraphTuftHeightError = 0.22f;
+
+TEST(ModelingAccuracy, TuftBladesCutByTheStemGraphKeepTheirHeight) {
+    capture::SegmenterParams potted;
+    potted.setSubject(capture::Subject::PottedPlant);
+    for (const std::uint64_t seed : {1u, 2u, 3u}) {
+        SCOPED_TRACE("seed " + std::to_string(seed));
+        Score leaves;
+        for (const std::string& preset : kBladeTypePresets)
+            if (preset != "slim-grass")
+                for (const float distance_m : {0.6f, 0.8f, 1.0f})
+                    leaves.add(run(preset, distance_m, seed, potted));
+        EXPECT_LE(leaves.meanHeightError(), kMaxStemGraphTuftHeightError) << "leaves: " << leaves;
     }
 }
 

@@ -172,6 +172,30 @@ TEST(StemPartition, LeavesThatCrossComeOutWholeThroughTheCrossing) {
     }
 }
 
+// A tuft: six blades fanning from one base, their bases a few pixels apart, so their skeletons
+// meet in a tangle of junctions just above it. Each blade comes out whole, from the base to its
+// own tip: the tangle is where the tuft stands, however its edges are ordered.
+TEST(StemPartition, BladesFanningFromOneBaseEachComeOutFromTheBase) {
+    drawn::Scene scene;
+    const cv::Point2f base(320.f, 400.f);
+    for (int i = 0; i < 6; ++i) {
+        const float angle =
+            (-50.f + 20.f * static_cast<float>(i)) * static_cast<float>(CV_PI) / 180.f;
+        const cv::Point2f offset(4.f * static_cast<float>(i) - 10.f, 0.f);
+        scene.blades.push_back(straightBlade(
+            base + offset, base + offset + 160.f * cv::Point2f(std::sin(angle), -std::cos(angle)),
+            1.f + 0.01f * static_cast<float>(i)));
+    }
+    const Segmentation s = segmentDrawnByStem(scene);
+    EXPECT_EQ(s.blades.size(), scene.blades.size()) << s.summary();
+    for (const drawn::Blade& blade : scene.blades) {
+        const BladeContour* b = bladeEndingAt(s, blade.tip_px);
+        ASSERT_NE(b, nullptr) << "no blade ends at " << blade.tip_px << "\n" << s.summary();
+        EXPECT_LE(cv::norm(cv::Point2f(b->contour_px.front()) - blade.base_px), 25.0)
+            << "the blade to " << blade.tip_px << " starts at " << b->contour_px.front();
+    }
+}
+
 // A leaf (1.00 m) ends where one behind it (1.16 m) rises on in the same line, and a third
 // (1.08 m) crosses both there. Direction alone joins the first two into one leaf; their depths,
 // 160 mm apart at the junction, keep them apart, while the crossing leaf, level in depth, runs
