@@ -120,15 +120,14 @@ std::string unlikeLeafParts(const PartShape& shape, const SegmenterParams& param
     // A grown maize shoot's leaves (7-13 cm across) seen face-on measure wider than a grass's,
     // up to half as wide again as the limit; so do a board's or a table top's. Its leaves are
     // many and long: its parts, by area, are far longer over their width than furniture's.
-    const bool broadLeaves = shape.width_m <= kBroadLeafWidthShare * params.plantMaxMeanWidth_m &&
-                             shape.elongation >= kBroadLeafMinElongation;
-    if (shape.width_m > params.plantMaxMeanWidth_m && !broadLeaves) {
+    const float broadMaxWidth_m = kBroadLeafWidthShare * params.plantMaxMeanWidth_m;
+    const bool broad = shape.width_m <= broadMaxWidth_m;
+    if (shape.width_m > params.plantMaxMeanWidth_m &&
+        !(broad && shape.elongation >= kBroadLeafMinElongation)) {
         why << "made of parts " << shape.width_m * 100 << " cm wide";
-        if (shape.width_m <= kBroadLeafWidthShare * params.plantMaxMeanWidth_m)
-            why << " and " << shape.elongation << " times as long";
+        if (broad) why << " and " << shape.elongation << " times as long";
         why << " (leaves: under " << params.plantMaxMeanWidth_m * 100 << " cm, or "
-            << kBroadLeafWidthShare * params.plantMaxMeanWidth_m * 100 << " cm when "
-            << kBroadLeafMinElongation << " times as long)";
+            << broadMaxWidth_m * 100 << " cm when " << kBroadLeafMinElongation << " times as long)";
     } else if (shape.elongation < kMinLeafElongation)
         why << shape.elongation << " times as long as it is wide (leaves: over "
             << kMinLeafElongation << ")";

@@ -461,10 +461,12 @@ FoundPlant findPlant(const cv::Mat1w& depth_mm, const Intrinsics& k, const Segme
     // Why the largest object is not a plant, for a user whose plant was not found.
     std::string largestUnlike;
     int largestArea_px = 0;
+    std::size_t largestIndex = clusters.size();
     // And the largest object only too small to be one: a plant too far away, most likely, once
     // it covers half the least a plant does.
     std::string largestSmall;
     int largestSmallArea_px = minArea_px / 2;
+    std::size_t largestSmallIndex = clusters.size();
     for (std::size_t i = 0; i < clusters.size(); ++i) {
         Cluster& c = clusters[i];
         // A pot, a box on the floor, a chair's seat: what stands thick on its bottom goes first,
@@ -488,6 +490,7 @@ FoundPlant findPlant(const cv::Mat1w& depth_mm, const Intrinsics& k, const Segme
                 << " px and " << p.plantMinHeight_m * 100 << " cm tall)";
             if (c.area_px > largestSmallArea_px) {
                 largestSmallArea_px = c.area_px;
+                largestSmallIndex = i;
                 std::ostringstream small;
                 small.precision(2);
                 small << "the largest thin one, " << c.height_m << " m tall at " << c.medianDepth_m
@@ -498,6 +501,7 @@ FoundPlant findPlant(const cv::Mat1w& depth_mm, const Intrinsics& k, const Segme
         const std::string unlike = why.str();
         if (c.area_px > largestArea_px) {
             largestArea_px = c.area_px;
+            largestIndex = i;
             std::ostringstream largest;
             largest.precision(2);
             if (!unlike.empty())
@@ -533,7 +537,7 @@ FoundPlant findPlant(const cv::Mat1w& depth_mm, const Intrinsics& k, const Segme
                 << "large enough and made of parts under " << p.plantMaxMeanWidth_m * 100
                 << " cm wide and " << kMinLeafElongation << " times as long, as leaves are";
         if (!largestUnlike.empty()) why << "; " << largestUnlike;
-        if (!largestSmall.empty() && largestUnlike.find(" is too small") == std::string::npos)
+        if (!largestSmall.empty() && largestSmallIndex != largestIndex)  // else said above
             why << "; " << largestSmall;
         if (offTop > 0)
             why << "; " << offTop << " that run(s) off the top of the view (a plant too near "
