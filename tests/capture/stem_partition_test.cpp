@@ -35,17 +35,19 @@ Segmentation segmentByStem(const cv::Mat1b& mask) {
     return Segmenter(params).segmentMask(mask);
 }
 
+// How many of the blades end within `within_px` of `tip`.
+long bladesEndingNear(const Segmentation& seg, cv::Point tip, double within_px) {
+    return std::count_if(seg.blades.begin(), seg.blades.end(), [&](const BladeContour& b) {
+        return cv::norm(b.contour_px[static_cast<std::size_t>(b.tipIndex)] - tip) <= within_px;
+    });
+}
+
 TEST(StemPartition, LeavesLeavingAStemComeOutOneABladeWithoutTheStem) {
     const Segmentation seg = segmentByStem(plantMask());
     ASSERT_EQ(seg.blades.size(), 3u) << seg.summary();
-    for (const DrawnLeaf& leaf : kLeaves) {
-        int found = 0;
-        for (const BladeContour& b : seg.blades) {
-            const cv::Point tip = b.contour_px[static_cast<std::size_t>(b.tipIndex)];
-            found += cv::norm(tip - leaf.tip) <= 6.0;
-        }
-        EXPECT_EQ(found, 1) << "one blade ends at the tip " << leaf.tip;
-    }
+    for (const DrawnLeaf& leaf : kLeaves)
+        EXPECT_EQ(bladesEndingNear(seg, leaf.tip, 6.0), 1)
+            << "one blade ends at the tip " << leaf.tip;
     for (const BladeContour& b : seg.blades) {
         EXPECT_FALSE(b.covers({100, 175})) << "the stem below the lowest leaf is no leaf's";
         EXPECT_FALSE(b.covers({100, 185}));
@@ -88,14 +90,10 @@ TEST(StemPartition, TheStemRunsOnToItsLeavesWhereALeafGoesOnMoreStraightly) {
     EXPECT_LE(cv::norm(stem.front() - cv::Point(100, 190)), 6.0) << stem.front();
     EXPECT_LE(cv::norm(stem.back() - cv::Point(125, 105)), 8.0) << stem.back();
     EXPECT_EQ(seg.blades.size(), 3u) << seg.summary();
-    for (const DrawnLeaf& leaf : leaves) {
-        const auto ends = [&](const BladeContour& b) {
-            return cv::norm(b.contour_px[static_cast<std::size_t>(b.tipIndex)] - leaf.tip) <= 6.0;
-        };
-        EXPECT_EQ(std::count_if(seg.blades.begin(), seg.blades.end(), ends), 1)
+    for (const DrawnLeaf& leaf : leaves)
+        EXPECT_EQ(bladesEndingNear(seg, leaf.tip, 6.0), 1)
             << "one blade ends at " << leaf.tip << "\n"
             << seg.summary();
-    }
 }
 
 // A broad stem (a grown maize shoot's, wrapped in sheaths: 21 px) that leaves leave on
@@ -117,14 +115,10 @@ TEST(StemPartition, LeavesLeavingABroadStemCloseTogetherEachLeaveItAtTheirOwnNod
     const std::vector<cv::Point>& stem = seg.clusters[0].stemLine_px;
     ASSERT_GE(stem.size(), 2u) << seg.summary();
     EXPECT_LE(stem.back().y, 145) << "the stem runs up past the lowest leaves to " << stem.back();
-    for (const DrawnLeaf& leaf : leaves) {
-        const auto ends = [&](const BladeContour& b) {
-            return cv::norm(b.contour_px[static_cast<std::size_t>(b.tipIndex)] - leaf.tip) <= 8.0;
-        };
-        EXPECT_EQ(std::count_if(seg.blades.begin(), seg.blades.end(), ends), 1)
+    for (const DrawnLeaf& leaf : leaves)
+        EXPECT_EQ(bladesEndingNear(seg, leaf.tip, 8.0), 1)
             << "one blade ends at " << leaf.tip << "\n"
             << seg.summary();
-    }
 }
 
 // The mask and depth of drawn blades, cut by the stem.
