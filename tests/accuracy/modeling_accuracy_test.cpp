@@ -112,8 +112,8 @@ TEST(ModelingAccuracy, LeafBladesAreRootedAtTheirTrueRootAtNominalNoise) {
 
 // A grass tuft in a pot is captured with --subject potted-plant: cut by the stem graph, its
 // blades fan from the foot, the tangle of skeleton junctions where they meet. Their heights
-// come out 11-19 % off (mean, per seed), against the contour partition's 5 % above; a foot
-// that loses blades' bases (junctions near it merged into a short stem) made it 20-27 %.
+// are held less tightly than the contour partition's above (docs/capture.md, partition by the
+// stem), but a foot that loses the blades' bases to a short stem goes past this bound.
 constexpr float kMaxStemGraphTuftHeightError = 0.22f;
 
 TEST(ModelingAccuracy, TuftBladesCutByTheStemGraphKeepTheirHeight) {
