@@ -216,6 +216,27 @@ TEST(PlantFindingScenes, ThePlantInItsPotJoinsTheLeafPieceTheCameraIsAimedAt) {
     EXPECT_NEAR(seg.plantBase_px->y, 240.f + 0.18f * k.fy_px, 6.f) << "it stands on its pot";
 }
 
+// A plant 2.2 m away that the sensor broke into two pieces: the pot with a stem 4 cm wide and a
+// leaf reaching left, and beside the stem, 4 cm off to the side and 6 cm behind, a leaf on its
+// own (its base hidden behind the stem). At that depth readings scatter over centimetres and
+// pieces of one plant part by more than they do near the camera: the leaf joins.
+TEST(PlantFindingScenes, AFarPlantsLeafSixCentimetresBehindItsStemJoinsIt) {
+    const Intrinsics k = Intrinsics::kinectV1();
+    constexpr float z = 2.2f;
+    const Strip pot{-0.06f, 0.06f, 0.18f, 0.3f, z}, stem{-0.02f, 0.02f, -0.7f, 0.18f, z};
+    const Strip arm{-0.4f, -0.02f, -0.5f, -0.47f, z};
+    const Strip behind{0.06f, 0.08f, -0.6f, -0.2f, z + 0.06f};
+    const Segmentation seg =
+        findIn(castScene(k, {kFloor, kWallAhead}, std::vector<Strip>{pot, stem, arm, behind}));
+    ASSERT_FALSE(seg.noPlant) << seg.noBladesReason;
+    ASSERT_FALSE(seg.clusterMask.empty());
+    for (const Strip& part : {stem, behind}) {
+        const cv::Mat1b drawn = castScene(k, {}, part) > 0;
+        EXPECT_GE(cv::countNonZero(seg.clusterMask & drawn), 0.6 * cv::countNonZero(drawn))
+            << "the part at x " << part.x0 << ".." << part.x1 << " m is the plant's";
+    }
+}
+
 // Grass seen from straight above stands on the ground, which faces the camera.
 TEST(PlantFindingScenes, AThinStripBeforeTheGroundSeenFromAboveIsAPlant) {
     const Plane groundBelow{0.f, 0.f, -1.f, 1.2f};

@@ -45,6 +45,9 @@ constexpr float kPlaneToleranceGrowth_per_m = 0.01f;
 // a remnant, not an object.
 constexpr float kRemnantTolerances = 2.f;
 constexpr float kMaxRemnantShare = 0.6f;
+// How far apart two pieces of one plant lie, near the camera. What parts them is what the
+// sensor did not read between them, or read as a jump; both widen as its readings scatter, with
+// depth squared, so the reach grows as a plane's tolerance does (7.8 cm at 2.2 m).
 constexpr float kLeafGap_m = 0.03f;
 // A depth jump spans this many of the sensor's 90th-percentile neighbour steps, at least.
 constexpr float kJumpSteps = 2.f;
@@ -564,8 +567,8 @@ FoundPlant findPlant(const cv::Mat1w& depth_mm, const Intrinsics& k, const Segme
     }
     // A plant whose leaves meet only at a stem the sensor hardly reads, or only across depth
     // jumps, falls apart into one cluster a leaf: the thin clusters whose bounds come within
-    // kLeafGap_m of the plant's join it, in turn; not what stood on something thick (a box's
-    // remains) nor slivers of the floor and wall.
+    // the leaf gap at the plant's depth of the plant's join it, in turn; not what stood on
+    // something thick (a box's remains) nor slivers of the floor and wall.
     Cluster& c = clusters[chosen];
     // A thick base high above the floor is a broad leaf's, in a piece the plant broke into: no
     // pot, and the piece's own. Each object's is measured once: a room leaves dozens.
@@ -586,6 +589,7 @@ FoundPlant findPlant(const cv::Mat1w& depth_mm, const Intrinsics& k, const Segme
     // the stem, broken off by the depth jumps around it), a larger thin object beside it that
     // does is the rest of the plant; a smaller one, a box's remains.
     bool standsInPot = potStands[chosen] != 0;
+    const float leafGap_m = planeTolerance_m(kLeafGap_m, c.medianDepth_m);
     const int pieceArea_px = c.area_px;
     std::vector<char> isThin(clusters.size(), 0);
     for (const std::size_t i : thin) isThin[i] = 1;
@@ -597,7 +601,7 @@ FoundPlant findPlant(const cv::Mat1w& depth_mm, const Intrinsics& k, const Segme
                 potStands[i] && !standsInPot && isThin[i] && o.area_px > pieceArea_px;
             if (joined[i] || o.area_px == 0 || o.meanWidth_m > p.plantMaxMeanWidth_m ||
                 o.nearPlanes > kMaxJoinedRemnantShare || (potStands[i] && !plantsPot) ||
-                !boundsMeet(c, o, kLeafGap_m))
+                !boundsMeet(c, o, leafGap_m))
                 continue;
             joined[i] = 1;
             standsInPot = standsInPot || plantsPot;
