@@ -122,6 +122,22 @@ TEST(PlantFindingScenes, AThinObjectOnlyTooSmallIsNamedWithWhatToDo) {
     EXPECT_NE(seg.noBladesReason.find("bring the camera closer"), std::string::npos);
 }
 
+// The same young plant alone: the largest object is itself only too small, and the reason says
+// what to do right after it.
+TEST(PlantFindingScenes, APlantOnlyTooSmallAloneIsToldToComeCloser) {
+    const Strip young{-0.01f, 0.01f, 0.03f, 0.3f, 1.f};
+    const Segmentation seg = findIn(castScene(Intrinsics::kinectV1(), {kFloor, kWallAhead}, young));
+    EXPECT_TRUE(seg.noPlant);
+    const std::string said = "the largest, 0.24 m tall at 1 m, is too small (";
+    const auto at = seg.noBladesReason.find(said);
+    ASSERT_NE(at, std::string::npos) << seg.noBladesReason;
+    const auto closer =
+        seg.noBladesReason.find("): bring the camera closer if it is the plant", at);
+    EXPECT_NE(closer, std::string::npos) << seg.noBladesReason;
+    EXPECT_EQ(seg.noBladesReason.find("the largest thin one"), std::string::npos)
+        << "said once: " << seg.noBladesReason;
+}
+
 // A wide-angle camera (a RealSense D435's 848 x 480 at 430 px focal length, 89 degrees across)
 // sees a strip 60 cm tall at the same distance on fewer pixels, and a smaller share of its image
 // (0.5 % against 1.2 %, under the 0.8 % a plant covers): the angle it covers keeps it, so both

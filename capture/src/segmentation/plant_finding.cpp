@@ -58,6 +58,8 @@ constexpr float kMaxJoinedRemnantShare = 0.2f;
 // it (a camera looking down sees its bottom rim hidden, the plane's removal takes a few cm).
 // A broad leaf's base in a piece of the plant that broke off lies well above.
 constexpr float kPotStandsWithin_m = 0.2f;
+// What a user whose plant is thin but only too small (over half a plant's pixels) should do.
+constexpr const char* kBringCloser = ": bring the camera closer if it is the plant";
 
 float planeTolerance_m(float base_m, float z_m) {
     return base_m + kPlaneToleranceGrowth_per_m * z_m * z_m;
@@ -497,7 +499,7 @@ FoundPlant findPlant(const cv::Mat1w& depth_mm, const Intrinsics& k, const Segme
                 std::ostringstream small;
                 small.precision(2);
                 small << "the largest thin one, " << c.height_m << " m tall at " << c.medianDepth_m
-                      << " m, " << why.str() << ": bring the camera closer if it is the plant";
+                      << " m, " << why.str() << kBringCloser;
                 largestSmall = small.str();
             }
         }
@@ -540,8 +542,9 @@ FoundPlant findPlant(const cv::Mat1w& depth_mm, const Intrinsics& k, const Segme
                 << "large enough and made of parts under " << p.plantMaxMeanWidth_m * 100
                 << " cm wide and " << kMinLeafElongation << " times as long, as leaves are";
         if (!largestUnlike.empty()) why << "; " << largestUnlike;
-        if (!largestSmall.empty() && largestSmallIndex != largestIndex)  // else said above
-            why << "; " << largestSmall;
+        if (!largestSmall.empty())  // the largest itself, or another
+            why << (largestSmallIndex == largestIndex ? std::string(kBringCloser)
+                                                      : "; " + largestSmall);
         if (offTop > 0)
             why << "; " << offTop << " that run(s) off the top of the view (a plant too near "
                 << "the camera, or a pole or frame of the room)";
