@@ -583,5 +583,35 @@ TEST(SegmenterOverlay, DrawsTheStemWhite) {
     }
 }
 
+// Each blade's id stands beside its tip, as capture's notes name the blade: white, or red when
+// the blade is flagged.
+TEST(SegmenterOverlay, WritesEachBladesIdBesideItsTip) {
+    DepthFrame frame;
+    frame.depth_mm = cv::Mat1w(120, 160, std::uint16_t{1000});
+    const auto bladeWithTipAt = [](int id, cv::Point tip) {
+        BladeContour b;
+        b.id = id;
+        b.contour_px = {tip + cv::Point(-10, 40), tip, tip + cv::Point(10, 40)};
+        b.tipIndex = 1;
+        b.mask = cv::Mat1b(1, 1, std::uint8_t{255});
+        b.maskOrigin_px = tip + cv::Point(0, 20);
+        return b;
+    };
+    Segmentation s;
+    s.blades = {bladeWithTipAt(12, {30, 40}), bladeWithTipAt(3, {100, 40})};
+    s.blades[1].flags = {BladeFlag::Overlapping};
+    const cv::Mat3b image = renderDebugOverlay(frame, s);
+    // Right of and above each tip, past its circle.
+    const auto inkBeside = [&](cv::Point tip, cv::Vec3b ink) {
+        int n = 0;
+        for (int y = tip.y - 16; y < tip.y; ++y)
+            for (int x = tip.x + 5; x < tip.x + 30; ++x) n += image(y, x) == ink;
+        return n;
+    };
+    EXPECT_GT(inkBeside({30, 40}, {255, 255, 255}), 10);
+    EXPECT_EQ(inkBeside({30, 40}, {0, 0, 255}), 0);
+    EXPECT_GT(inkBeside({100, 40}, {0, 0, 255}), 10);
+}
+
 }  // namespace
 }  // namespace meadow::capture

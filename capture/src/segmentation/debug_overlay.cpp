@@ -1,8 +1,10 @@
 // Debug overlay in the manner of Fan & Sheng 2017, Fig. 4: depth in grey, the cluster mask
-// tinted, every blade in its own colour, contours, centre and base point, cut points, the stem.
+// tinted, every blade in its own colour with its id at its tip, contours, centre and base point,
+// cut points, the stem.
 #include <cmath>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
+#include <string>
 
 #include "meadow/capture/error.h"
 #include "meadow/core/atomic_file.h"
@@ -14,6 +16,8 @@ namespace {
 constexpr double kGoldenRatioConjugate = 0.618033988749895;  // well-spread hues, blade to blade
 constexpr double kBladeAlpha = 0.6;
 constexpr int kMarker_px = 9;
+constexpr int kLabelOffset_px = 5;  // past the tip's circle
+constexpr double kLabelScale = 0.4;
 
 cv::Vec3b bladeColour(int id) {
     const double hue = std::fmod(static_cast<double>(id) * kGoldenRatioConjugate, 1.0) * 180.0;
@@ -57,12 +61,16 @@ cv::Mat3b renderDebugOverlay(const DepthFrame& frame, const Segmentation& s) {
         const cv::Vec3b c = bladeColour(b.id);
         cv::polylines(out, std::vector<std::vector<cv::Point>>{b.contour_px}, false, cv::Scalar(c),
                       1);
-        if (!b.contour_px.empty())
-            cv::circle(out, b.contour_px[static_cast<size_t>(b.tipIndex)], 3,
-                       cv::Scalar(255, 255, 255), 1);
-        if (!b.flags.empty() && !b.contour_px.empty())
-            cv::putText(out, "!", b.contour_px[static_cast<size_t>(b.tipIndex)] + cv::Point(4, -4),
-                        cv::FONT_HERSHEY_SIMPLEX, 0.5, cv::Scalar(0, 0, 255), 1);
+        if (b.contour_px.empty()) continue;
+        const cv::Point tip = b.contour_px[static_cast<size_t>(b.tipIndex)];
+        cv::circle(out, tip, 3, cv::Scalar(255, 255, 255), 1);
+        // The blade's id beside its tip, as capture's notes name it ("frame 0 blade 4 skipped:
+        // ..."): white, or red with a "!" when flagged; outlined in black to read on any colour.
+        const std::string label = std::to_string(b.id) + (b.flags.empty() ? "" : "!");
+        const cv::Scalar ink = b.flags.empty() ? cv::Scalar(255, 255, 255) : cv::Scalar(0, 0, 255);
+        const cv::Point at = tip + cv::Point(kLabelOffset_px, -kLabelOffset_px);
+        cv::putText(out, label, at, cv::FONT_HERSHEY_SIMPLEX, kLabelScale, cv::Scalar(0, 0, 0), 3);
+        cv::putText(out, label, at, cv::FONT_HERSHEY_SIMPLEX, kLabelScale, ink, 1);
     }
     for (const auto& c : s.clusters) {
         // The stem as the stem-graph partition found it: where the leaves' bases should lie.
