@@ -343,6 +343,8 @@ struct Segmenter::Impl {
                                                          out.plantBase_px, r)
                                   : seg::partitionCluster(cluster, mask, depth_mm,
                                                           out.edgeRaggedness, params, firstId, r);
+                if (params.partition != PartitionMethod::StemGraph)
+                    seg::flagCutCrossings(blades, cluster, mask, depth_mm, params);
                 seg::flagBlades(blades, cluster, mask.size(), sensed, params, out.edgeRaggedness);
                 for (auto& b : blades) {
                     const auto tip = static_cast<size_t>(b.tipIndex);

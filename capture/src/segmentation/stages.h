@@ -198,6 +198,11 @@ std::vector<BladeContour> partitionCluster(BladeCluster& cluster, const cv::Mat1
                                            const cv::Mat1w& depth_mm, float raggedness,
                                            const SegmenterParams& params, int firstId,
                                            StageReport& report);
+// crossing_flags.cpp: flags overlapping the blades the contour partition cut at a crossing (the
+// cluster's skeleton runs straight on through one junction along two strands).
+void flagCutCrossings(std::span<BladeContour> blades, const BladeCluster& cluster,
+                      const cv::Mat1b& mask, const cv::Mat1w& depth_mm,
+                      const SegmenterParams& params);
 // stem_partition.cpp: PartitionMethod::StemGraph. The cluster's skeleton as a graph, its edges
 // joined through the junctions by the smoothest continuation in direction and, where `depth_mm`
 // holds readings (it may be empty), in depth; the strand from the plant's foot that most others

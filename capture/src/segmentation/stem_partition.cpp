@@ -9,9 +9,8 @@
 // which a stem breaks.
 #include <algorithm>
 #include <opencv2/imgproc.hpp>
-#include <opencv2/ximgproc.hpp>
 
-#include "segmentation/skeleton_graph.h"
+#include "segmentation/cluster_skeleton.h"
 #include "segmentation/stages.h"
 
 namespace meadow::capture::segmentation {
@@ -170,48 +169,25 @@ std::vector<cv::Mat1b> sharesOfRegion(const cv::Mat1b& region, const cv::Mat1b& 
     return masks;
 }
 
-// Nodes two or more strands run through.
-int crossingsFollowed(const SkeletonGraph& graph, const Strands& strands) {
-    std::vector<int> through(graph.nodes.size(), 0);
-    for (const Strand& s : strands.strands)
-        for (const int n : s.through) ++through[static_cast<std::size_t>(n)];
-    return static_cast<int>(
-        std::count_if(through.begin(), through.end(), [](int t) { return t >= 2; }));
-}
-
 }  // namespace
 
 std::vector<BladeContour> partitionByStem(BladeCluster& cluster, const cv::Mat1b& mask,
                                           const cv::Mat1w& depth_mm, const SegmenterParams& params,
                                           int firstId, const std::optional<cv::Point2f>& plantBase,
                                           StageReport& report) {
-    const cv::Rect box = cv::boundingRect(cluster.contour_px);
-    cv::Mat1b region(box.size(), std::uint8_t{0});
-    cv::drawContours(region, std::vector<std::vector<cv::Point>>{cluster.contour_px}, 0, 255,
-                     cv::FILLED, cv::LINE_8, cv::noArray(), 0, -box.tl());
-    region &= mask(box);
-    cv::Mat1b skeleton;
-    cv::ximgproc::thinning(region, skeleton, cv::ximgproc::THINNING_ZHANGSUEN);
-    std::vector<cv::Point> onSkeleton;
-    cv::findNonZero(skeleton, onSkeleton);
-    if (onSkeleton.empty()) return {};
-
-    // The root: the skeleton pixel nearest where the plant stands, or the cluster's base point.
-    const cv::Point2f foot = plantBase.value_or(cluster.basePoint_px) - cv::Point2f(box.tl());
-    const cv::Point root = *std::min_element(
-        onSkeleton.begin(), onSkeleton.end(), [&](const cv::Point& a, const cv::Point& b) {
-            return cv::norm(cv::Point2f(a) - foot) < cv::norm(cv::Point2f(b) - foot);
-        });
-    // Spurs of the skeleton (a bump in the edge) are not leaves.
-    const int spurs = removeSpurs(skeleton, root, params.minLeafBranch_px);
-    cv::findNonZero(skeleton, onSkeleton);
-    cv::Mat1f halfWidth;
-    cv::distanceTransform(region, halfWidth, cv::DIST_L2, cv::DIST_MASK_5);
-    SkeletonGraph graph = skeletonGraph(skeleton, root);
-    mergeCloseJunctions(graph, halfWidth);
-    const cv::Mat1w depth = depth_mm.empty() ? cv::Mat1w() : cv::Mat1w(depth_mm(box));
-    Strands strands = followStrands(graph, halfWidth, depth,
-                                    {params.crossingMaxBend_deg, params.crossingDepthStep_mm});
+    const cv::Point2f footInFrame = plantBase.value_or(cluster.basePoint_px);
+    std::optional<ClusterSkeleton> skeletonOf =
+        clusterSkeleton(cluster, mask, depth_mm, params, footInFrame);
+    if (!skeletonOf) return {};
+    ClusterSkeleton& sk = *skeletonOf;
+    const cv::Rect& box = sk.box;
+    const cv::Mat1b& region = sk.region;
+    const cv::Mat1b& skeleton = sk.skeleton;
+    const std::vector<cv::Point>& onSkeleton = sk.onSkeleton;
+    const cv::Point root = sk.root;
+    const SkeletonGraph& graph = sk.graph;
+    Strands& strands = sk.strands;
+    const cv::Point2f foot = footInFrame - cv::Point2f(box.tl());
 
     // The stem, and the leaves: every other strand long enough to be more than a spur.
     const std::vector<int> stem = followStem(graph, strands);
@@ -260,12 +236,12 @@ std::vector<BladeContour> partitionByStem(BladeCluster& cluster, const cv::Mat1b
                     "its tip is hidden there, or it runs on under another leaf");
         blades.push_back(std::move(*blade));
     }
-    const int crossings = crossingsFollowed(graph, strands);
+    const auto crossings = crossingNodes(graph, strands).size();
     report.notes.push_back(
         "cluster of " + std::to_string(cluster.area_px) + " px: " + std::to_string(blades.size()) +
         " leaf/leaves cut from a stem of " + std::to_string(stemPixels) + " px; " +
         std::to_string(crossings) + " crossing(s) followed through; " + std::to_string(belowFoot) +
-        " branch(es) wholly below the plant's foot (pot) left out; " + std::to_string(spurs) +
+        " branch(es) wholly below the plant's foot (pot) left out; " + std::to_string(sk.spurs) +
         " skeleton spur(s) under " + std::to_string(static_cast<int>(params.minLeafBranch_px)) +
         " px dropped");
     cluster.cutIndices.clear();
