@@ -121,6 +121,25 @@ TEST(StemPartition, LeavesLeavingABroadStemCloseTogetherEachLeaveItAtTheirOwnNod
             << seg.summary();
 }
 
+// The top pair of leaves leaves the stem's top on both sides, each arching down: through that
+// node they run on smoothly into each other, but nothing of the stem runs on there, so they are
+// two leaves, not one arch across the stem's top.
+TEST(StemPartition, TheTopPairOfLeavesAreTwoLeaves) {
+    cv::Mat1b mask = cv::Mat1b::zeros(220, 220);
+    cv::line(mask, {100, 190}, {100, 110}, 255, 9);
+    cv::line(mask, {100, 160}, {165, 150}, 255, 7);  // a lower leaf
+    const std::vector<cv::Point> left{{100, 110}, {70, 100}, {40, 115}};
+    const std::vector<cv::Point> right{{100, 110}, {130, 100}, {160, 115}};
+    cv::polylines(mask, std::vector<std::vector<cv::Point>>{left, right}, false, 255, 7);
+    const Segmentation seg = segmentByStem(mask);
+    EXPECT_EQ(seg.blades.size(), 3u) << seg.summary();
+    for (const cv::Point tip : {cv::Point(165, 150), left.back(), right.back()})
+        EXPECT_EQ(bladesEndingNear(seg, tip, 8.0), 1) << "one blade ends at " << tip << "\n"
+                                                      << seg.summary();
+    for (const BladeContour& b : seg.blades)
+        EXPECT_FALSE(b.covers({70, 100}) && b.covers({130, 100})) << "no blade spans the top";
+}
+
 // The mask and depth of drawn blades, cut by the stem.
 Segmentation segmentDrawnByStem(const drawn::Scene& scene) {
     SegmenterParams params;
