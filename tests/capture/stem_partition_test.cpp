@@ -140,6 +140,25 @@ TEST(StemPartition, TheTopPairOfLeavesAreTwoLeaves) {
         EXPECT_FALSE(b.covers({70, 100}) && b.covers({130, 100})) << "no blade spans the top";
 }
 
+// A pair of leaves leaving the stem at one node on both sides, below a leaf leaving it alone:
+// they too run on smoothly into each other through the node, and are two leaves.
+TEST(StemPartition, APairOfLeavesLeavingOneNodeOfTheStemAreTwoLeaves) {
+    cv::Mat1b mask = cv::Mat1b::zeros(220, 220);
+    cv::line(mask, {100, 200}, {100, 80}, 255, 9);
+    cv::line(mask, {100, 80}, {96, 15}, 255, 7);   // the top leaf, where the stem ends
+    cv::line(mask, {100, 95}, {170, 60}, 255, 7);  // a leaf leaving alone
+    const std::vector<cv::Point> left{{100, 140}, {70, 130}, {35, 140}};
+    const std::vector<cv::Point> right{{100, 140}, {130, 130}, {165, 140}};
+    cv::polylines(mask, std::vector<std::vector<cv::Point>>{left, right}, false, 255, 7);
+    const Segmentation seg = segmentByStem(mask);
+    EXPECT_EQ(seg.blades.size(), 4u) << seg.summary();
+    for (const cv::Point tip : {cv::Point(96, 15), cv::Point(170, 60), left.back(), right.back()})
+        EXPECT_EQ(bladesEndingNear(seg, tip, 8.0), 1) << "one blade ends at " << tip << "\n"
+                                                      << seg.summary();
+    for (const BladeContour& b : seg.blades)
+        EXPECT_FALSE(b.covers({70, 130}) && b.covers({130, 130})) << "no blade spans the stem";
+}
+
 // The mask and depth of drawn blades, cut by the stem.
 Segmentation segmentDrawnByStem(const drawn::Scene& scene) {
     SegmenterParams params;

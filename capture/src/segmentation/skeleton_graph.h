@@ -80,10 +80,10 @@ Strands followStrands(const SkeletonGraph& graph, const cv::Mat1f& halfWidth_px,
 // through it); up along it, and at its end, where a strand that ends on it carries more leaves
 // beyond that node than its own continuation, the stem turns into that strand and what it leaves
 // becomes a leaf of its own; at the top, the stem ends at the highest node another strand ends at,
-// and what runs on above becomes the top leaf; a strand through that node is cut there into the
-// two top leaves. Splits strands to do so (new strands go at the end).
-// Returns the stem's strands in order from the root, each turned to run upwards; empty when no
-// strand from the root carries a leaf (a lone leaf, or blades fanning from the root itself).
+// and what runs on above becomes the top leaf; a strand through a node of the stem is cut there
+// into the two leaves that leave it on both sides. Splits strands to do so (new strands go at the
+// end). Returns the stem's strands in order from the root, each turned to run upwards; empty when
+// no strand from the root carries a leaf (a lone leaf, or blades fanning from the root itself).
 std::vector<int> followStem(const SkeletonGraph& graph, Strands& strands);
 
 }  // namespace meadow::capture::segmentation

@@ -137,18 +137,26 @@ std::vector<int> followStem(const SkeletonGraph& graph, Strands& strands) {
     for (std::size_t j = 1; j < edges && !endCarries; ++j)
         if (meeting[static_cast<std::size_t>(nodeAlong(top, j))] > 1) last = j;
     if (last > 0 && last < edges) splitOff(strands, static_cast<std::size_t>(current), last);
-    // Where the stem ends, nothing runs on: a strand through that node is no leaf crossing the
-    // stem but the top pair of leaves, leaving it on both sides (maize's are alternate). Each is
-    // a leaf of its own from there.
-    const int topNode = strands.strands[static_cast<std::size_t>(current)].endNode;
-    if (!graph.nodes[static_cast<std::size_t>(topNode)].tip)
-        for (std::size_t i = 0; i < strands.strands.size(); ++i) {
-            if (std::find(stem.begin(), stem.end(), static_cast<int>(i)) != stem.end()) continue;
-            const std::vector<int>& through = strands.strands[i].through;
-            const auto at = std::find(through.begin(), through.end(), topNode);
-            if (at != through.end())
-                splitOff(strands, i, static_cast<std::size_t>(at - through.begin()) + 1);
-        }
+    // A strand through a node of the stem is a pair of leaves leaving it there on both sides
+    // (the smoothest continuation joins the two into one arch; maize's leaves are alternate), or
+    // at the stem's top, where nothing runs on, the top pair: each is a leaf of its own from the
+    // node. A leaf crossing the stem in the image without leaving it is cut there too: the
+    // skeleton does not tell the two apart.
+    std::vector<int> stemNodes;
+    for (const int t : stem) {
+        const Strand& st = strands.strands[static_cast<std::size_t>(t)];
+        for (std::size_t j = 0; j <= st.edges.size(); ++j) stemNodes.push_back(nodeAlong(st, j));
+    }
+    for (std::size_t i = 0; i < strands.strands.size(); ++i) {
+        if (std::find(stem.begin(), stem.end(), static_cast<int>(i)) != stem.end()) continue;
+        const std::vector<int>& through = strands.strands[i].through;
+        const auto at = std::find_if(through.begin(), through.end(), [&](int n) {
+            return n != graph.rootNode &&
+                   std::find(stemNodes.begin(), stemNodes.end(), n) != stemNodes.end();
+        });
+        if (at != through.end())
+            splitOff(strands, i, static_cast<std::size_t>(at - through.begin()) + 1);
+    }
     return stem;
 }
 
