@@ -2,6 +2,7 @@
 // apart from one base: two blades crossing in an X are cut at the crossing into four pieces that
 // each look like a plain blade. The cluster's skeleton tells: there it runs straight on through
 // one junction along two strands (the stem partition follows them through, stem_partition.cpp).
+#include <algorithm>
 #include <opencv2/imgproc.hpp>
 #include <string>
 
