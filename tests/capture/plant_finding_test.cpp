@@ -3,9 +3,11 @@
 // only walls beside the camera around it (a curtain's edge in a room) is not a plant.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <opencv2/core.hpp>
+#include <opencv2/imgproc.hpp>
 #include <optional>
 #include <string>
 #include <vector>
@@ -103,6 +105,28 @@ TEST(PlantFindingScenes, AWideBoardIsNoPlantAndTheReasonGivesItsWidth) {
     EXPECT_NE(seg.noBladesReason.find("(leaves: under 4 cm, or 6 cm when 20 times as long)"),
               std::string::npos)
         << seg.noBladesReason;
+}
+
+// Beside the plant, a board too wide to be one: the plant is found, and the board is among the
+// objects left out, outlined where it stands, with why; alone, it is left out the same way.
+TEST(PlantFindingScenes, ObjectsLeftOutAreOutlinedWithWhy) {
+    const Intrinsics k = Intrinsics::kinectV1();
+    const Strip board{0.15f, 0.27f, -0.2f, 0.3f, 1.2f};
+    const cv::Point boardCentre(static_cast<int>(k.cx_px + k.fx_px * 0.21f / 1.2f),
+                                static_cast<int>(k.cy_px + k.fy_px * 0.f / 1.2f));
+    const auto boardLeftOut = [&](const Segmentation& seg) {
+        return std::any_of(seg.leftOut.begin(), seg.leftOut.end(), [&](const LeftOutObject& o) {
+            return o.why == "too wide" &&
+                   cv::pointPolygonTest(o.outline_px, cv::Point2f(boardCentre), false) > 0;
+        });
+    };
+    const Segmentation both =
+        findIn(castScene(k, {kFloor, kWallAhead}, std::vector<Strip>{kLeaf, board}));
+    ASSERT_FALSE(both.noPlant) << both.noBladesReason;
+    EXPECT_TRUE(boardLeftOut(both));
+    const Segmentation alone = findIn(castScene(k, {kFloor, kWallAhead}, board));
+    EXPECT_TRUE(alone.noPlant);
+    EXPECT_TRUE(boardLeftOut(alone));
 }
 
 // A young plant seen from too far covers less of the view than a plant must (but over half of

@@ -602,6 +602,18 @@ TEST(SegmenterOverlay, DrawsTheStemWhite) {
     }
 }
 
+// What plant finding left out is outlined in orange.
+TEST(SegmenterOverlay, OutlinesTheObjectsLeftOut) {
+    DepthFrame frame;
+    frame.depth_mm = cv::Mat1w(120, 160, std::uint16_t{1000});
+    Segmentation s;
+    s.leftOut.push_back({{{40, 40}, {100, 40}, {100, 100}, {40, 100}}, "too wide"});
+    const cv::Mat3b image = renderDebugOverlay(frame, s);
+    for (const cv::Point p : {cv::Point(40, 70), cv::Point(100, 70), cv::Point(70, 100)})
+        EXPECT_EQ(image(p), cv::Vec3b(0, 140, 255)) << p;
+    EXPECT_EQ(image(70, 70), cv::Vec3b(0, 0, 0)) << "inside stays as it was";
+}
+
 // Each blade's id stands beside its tip, as capture's notes name the blade: white, or red when
 // the blade is flagged.
 TEST(SegmenterOverlay, WritesEachBladesIdBesideItsTip) {

@@ -1,6 +1,7 @@
 // Debug overlay in the manner of Fan & Sheng 2017, Fig. 4: depth in grey, the cluster mask
 // tinted, every blade in its own colour with its id at its tip, contours, centre and base point,
-// cut points, the stem.
+// cut points, the stem; the objects plant finding left out, outlined with why.
+#include <algorithm>
 #include <cmath>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
@@ -18,6 +19,15 @@ constexpr double kBladeAlpha = 0.6;
 constexpr int kMarker_px = 9;
 constexpr int kLabelOffset_px = 5;  // past the tip's circle
 constexpr double kLabelScale = 0.4;
+constexpr int kTextHeight_px = 12;  // of kLabelScale text, with its outline
+
+const cv::Scalar kLeftOutInk(0, 140, 255);  // orange
+
+// Text outlined in black, to read on any colour.
+void drawOutlinedText(cv::Mat3b& image, const std::string& text, cv::Point at, cv::Scalar ink) {
+    cv::putText(image, text, at, cv::FONT_HERSHEY_SIMPLEX, kLabelScale, cv::Scalar(0, 0, 0), 3);
+    cv::putText(image, text, at, cv::FONT_HERSHEY_SIMPLEX, kLabelScale, ink, 1);
+}
 
 cv::Vec3b bladeColour(int id) {
     const double hue = std::fmod(static_cast<double>(id) * kGoldenRatioConjugate, 1.0) * 180.0;
@@ -47,6 +57,16 @@ cv::Mat3b renderDebugOverlay(const DepthFrame& frame, const Segmentation& s) {
     cv::cvtColor(grey, out, cv::COLOR_GRAY2BGR);
     if (!s.clusterMask.empty() && s.clusterMask.size() == out.size())
         out.setTo(cv::Scalar(90, 60, 60), s.clusterMask);  // mask not given to any blade: slate
+    // What plant finding left out, and why: a user whose plant lacks a part sees where it went.
+    for (const LeftOutObject& o : s.leftOut) {
+        if (o.outline_px.empty()) continue;
+        cv::polylines(out, std::vector<std::vector<cv::Point>>{o.outline_px}, true, kLeftOutInk, 1);
+        const cv::Rect box = cv::boundingRect(o.outline_px);
+        // Above the outline, or just inside it where the frame's top leaves no room.
+        drawOutlinedText(out, o.why,
+                         {box.x, box.y >= kTextHeight_px ? box.y - 3 : box.y + kTextHeight_px},
+                         kLeftOutInk);
+    }
     for (const auto& b : s.blades) {
         const cv::Rect box = b.maskBox_px() & cv::Rect(0, 0, out.cols, out.rows);
         const cv::Vec3b c = bladeColour(b.id);
@@ -68,9 +88,7 @@ cv::Mat3b renderDebugOverlay(const DepthFrame& frame, const Segmentation& s) {
         // ..."): white, or red with a "!" when flagged; outlined in black to read on any colour.
         const std::string label = std::to_string(b.id) + (b.flags.empty() ? "" : "!");
         const cv::Scalar ink = b.flags.empty() ? cv::Scalar(255, 255, 255) : cv::Scalar(0, 0, 255);
-        const cv::Point at = tip + cv::Point(kLabelOffset_px, -kLabelOffset_px);
-        cv::putText(out, label, at, cv::FONT_HERSHEY_SIMPLEX, kLabelScale, cv::Scalar(0, 0, 0), 3);
-        cv::putText(out, label, at, cv::FONT_HERSHEY_SIMPLEX, kLabelScale, ink, 1);
+        drawOutlinedText(out, label, tip + cv::Point(kLabelOffset_px, -kLabelOffset_px), ink);
     }
     for (const auto& c : s.clusters) {
         // The stem as the stem-graph partition found it: where the leaves' bases should lie.

@@ -58,6 +58,10 @@ constexpr float kMaxJoinedRemnantShare = 0.2f;
 // it (a camera looking down sees its bottom rim hidden, the plane's removal takes a few cm).
 // A broad leaf's base in a piece of the plant that broke off lies well above.
 constexpr float kPotStandsWithin_m = 0.2f;
+// The objects left out that the debug overlay outlines: the largest, down to an eighth of what a
+// plant covers at least.
+constexpr std::size_t kMaxLeftOut = 12;
+constexpr int kLeftOutShareOfPlant = 8;
 // What a user whose plant is thin but only too small (over half a plant's pixels) should do.
 constexpr const char* kBringCloser = ": bring the camera closer if it is the plant";
 
@@ -423,6 +427,36 @@ bool runsOffTop(const cv::Mat1b& mask, const SensedExtent& sensed) {
     return columns >= kMinColumns;
 }
 
+// The objects not taken for the plant's (`joined` 0) and at least `minArea_px` large, largest
+// first and at most kMaxLeftOut of them (a room leaves dozens), each outlined, pot and all, with
+// its tag.
+std::vector<LeftOutObject> leftOutObjects(const std::vector<Cluster>& clusters,
+                                          const std::vector<std::string>& tag,
+                                          const std::vector<char>& joined, int minArea_px) {
+    std::vector<std::size_t> order;
+    for (std::size_t i = 0; i < clusters.size(); ++i)
+        if (!joined[i] && !tag[i].empty() && clusters[i].area_px >= minArea_px) order.push_back(i);
+    std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+        return clusters[a].area_px > clusters[b].area_px;
+    });
+    if (order.size() > kMaxLeftOut) order.resize(kMaxLeftOut);
+    std::vector<LeftOutObject> out;
+    for (const std::size_t i : order) {
+        const cv::Mat1b whole = clusters[i].mask | clusters[i].pot;
+        const cv::Rect box = cv::boundingRect(whole);
+        std::vector<std::vector<cv::Point>> contours;
+        cv::findContours(whole(box).clone(), contours, cv::RETR_EXTERNAL, cv::CHAIN_APPROX_SIMPLE,
+                         box.tl());
+        if (contours.empty()) continue;
+        out.push_back({*std::max_element(contours.begin(), contours.end(),
+                                         [](const auto& a, const auto& b) {
+                                             return cv::contourArea(a) < cv::contourArea(b);
+                                         }),
+                       tag[i]});
+    }
+    return out;
+}
+
 }  // namespace
 
 FoundPlant findPlant(const cv::Mat1w& depth_mm, const Intrinsics& k, const SegmenterParams& p,
@@ -472,6 +506,7 @@ FoundPlant findPlant(const cv::Mat1w& depth_mm, const Intrinsics& k, const Segme
     std::string largestSmall;
     int largestSmallArea_px = minArea_px / 2;
     std::size_t largestSmallIndex = clusters.size();
+    std::vector<std::string> tag(clusters.size());  // why each is not a plant, in a few words
     for (std::size_t i = 0; i < clusters.size(); ++i) {
         Cluster& c = clusters[i];
         // A pot, a box on the floor, a chair's seat: what stands thick on its bottom goes first,
@@ -486,11 +521,14 @@ FoundPlant findPlant(const cv::Mat1w& depth_mm, const Intrinsics& k, const Segme
         // What keeps it from being a plant, empty when nothing does.
         std::ostringstream why;
         why.precision(2);
-        if (const std::string parts = unlikeLeafParts(shape, p); !parts.empty())
+        if (const std::string parts = unlikeLeafParts(shape, p); !parts.empty()) {
             why << "is " << parts;
-        else if (c.nearPlanes > kMaxRemnantShare)
+            tag[i] = shape.width_m > p.plantMaxMeanWidth_m ? "too wide" : "too short for its width";
+        } else if (c.nearPlanes > kMaxRemnantShare) {
             why << "lies along the floor or a wall (what their removal left)";
-        else if (c.height_m < p.plantMinHeight_m || c.area_px < minArea_px) {
+            tag[i] = "floor or wall";
+        } else if (c.height_m < p.plantMinHeight_m || c.area_px < minArea_px) {
+            tag[i] = "too small";
             why << "is too small (" << c.area_px << " px; a plant: at least " << minArea_px
                 << " px and " << p.plantMinHeight_m * 100 << " cm tall)";
             if (c.area_px > largestSmallArea_px) {
@@ -519,10 +557,12 @@ FoundPlant findPlant(const cv::Mat1w& depth_mm, const Intrinsics& k, const Segme
             // the view (a door's frame, a curtain, a lamp's pole) is the room's.
             if (runsOffTop(c.mask, sensed)) {
                 ++offTop;
+                tag[i] = "runs off the top";
                 continue;
             }
             if (!bearingInView) {
                 ++unborne;
+                tag[i] = "nothing to stand on";
                 continue;
             }
             thin.push_back(i);
@@ -553,6 +593,8 @@ FoundPlant findPlant(const cv::Mat1w& depth_mm, const Intrinsics& k, const Segme
                 << " thin enough, but no floor, table top or ground in view (a plant "
                 << "stands on one: keep it in view, the camera upright)";
         plant.whyNot = why.str();
+        plant.leftOut = leftOutObjects(clusters, tag, std::vector<char>(clusters.size(), 0),
+                                       minArea_px / kLeftOutShareOfPlant);
         return plant;
     }
     // The one the camera is aimed at: nearest the image's centre, among those at least a tenth
@@ -619,6 +661,10 @@ FoundPlant findPlant(const cv::Mat1w& depth_mm, const Intrinsics& k, const Segme
         }
     }
     c.area_px = cv::countNonZero(c.mask);
+    for (const std::size_t i : thin)
+        if (!joined[i])
+            tag[i] = potStands[i] ? "stands in a pot of its own" : "apart from the plant";
+    plant.leftOut = leftOutObjects(clusters, tag, joined, minArea_px / kLeftOutShareOfPlant);
     const cv::Mat1b& pot = c.pot;
     std::ostringstream note;
     note.precision(2);

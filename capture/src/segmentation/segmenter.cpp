@@ -277,6 +277,7 @@ struct Segmenter::Impl {
             plant = seg::findPlant(depth_mm, intrinsics, params, r);
             mask = plant.found ? plant.mask : cv::Mat1b::zeros(depth_mm.size());
         });
+        out.leftOut = std::move(plant.leftOut);
         if (!plant.found) {
             out.noBladesReason = plant.whyNot;
             out.noPlant = true;

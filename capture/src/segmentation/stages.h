@@ -71,6 +71,7 @@ struct FoundPlant {
     float near_m = 0.f, far_m = 0.f;
     cv::Point2f base_px;  // where it stands: the top middle of its pot, else its lowest row's
     std::string whyNot;   // "no plant in view: ..." when not found
+    std::vector<LeftOutObject> leftOut;  // the largest objects not taken, and why
 };
 FoundPlant findPlant(const cv::Mat1w& depth_mm, const Intrinsics& intrinsics,
                      const SegmenterParams& params, StageReport& report);

@@ -299,6 +299,13 @@ struct StageReport {
     std::vector<std::string> notes;  // "dropped 3 regions < 60 px", "plane n=(..) 41 % of band"
 };
 
+// An object that plant finding (PlantFinding::Clusters) saw standing apart from the floor and
+// walls and did not take for the plant's, with why in a few words.
+struct LeftOutObject {
+    std::vector<cv::Point> outline_px;  // its outer contour, frame pixels
+    std::string why;                    // "too wide", "too small", "apart from the plant", ...
+};
+
 // A connected foreground region: the tuft, normally one per frame.
 struct BladeCluster {
     std::vector<cv::Point> contour_px;  // outer contour, CHAIN_APPROX_NONE, counter-clockwise
@@ -343,6 +350,9 @@ struct Segmentation {
     bool noPlant = false;
     // Where the plant stands in the image (PlantFinding::Clusters: the top of its pot).
     std::optional<cv::Point2f> plantBase_px;
+    // PlantFinding::Clusters: the largest objects it did not take for the plant's, and why (the
+    // debug overlay outlines them), whether it found a plant or not.
+    std::vector<LeftOutObject> leftOut;
     [[nodiscard]] bool empty() const { return blades.empty(); }
     [[nodiscard]] std::vector<cv::Point> cutPoints_px() const;
     [[nodiscard]] double totalTime_ms() const;
