@@ -67,6 +67,13 @@ Segmentation findIn(const cv::Mat1w& depth, const Intrinsics& k = Intrinsics::ki
     return Segmenter(params).segment(frame);
 }
 
+// Most (60 %) of `part`'s pixels lie in the plant's mask.
+void expectInThePlant(const Segmentation& seg, const Intrinsics& k, const Strip& part) {
+    const cv::Mat1b drawn = castScene(k, {}, part) > 0;
+    EXPECT_GE(cv::countNonZero(seg.clusterMask & drawn), 0.6 * cv::countNonZero(drawn))
+        << "the part at x " << part.x0 << ".." << part.x1 << " m is the plant's";
+}
+
 // A level camera 0.3 m above the floor, a wall 2.5 m ahead; the strip 50 cm tall at 1 m.
 constexpr Plane kFloor{0.f, -1.f, 0.f, 0.3f};
 constexpr Plane kWallAhead{0.f, 0.f, -1.f, 2.5f};
@@ -224,11 +231,7 @@ TEST(PlantFindingScenes, APieceOfThePlantWithABroadBaseHighAboveTheFloorJoinsIt)
         findIn(castScene(k, {kFloor, kWallAhead}, std::vector<Strip>{pot, stem, leafBase, leaf}));
     ASSERT_FALSE(seg.noPlant) << seg.noBladesReason;
     ASSERT_FALSE(seg.clusterMask.empty());
-    for (const Strip& part : {leafBase, leaf}) {
-        const cv::Mat1b drawn = castScene(k, {}, part) > 0;
-        EXPECT_GE(cv::countNonZero(seg.clusterMask & drawn), 0.6 * cv::countNonZero(drawn))
-            << "the piece at x " << part.x0 << ".." << part.x1 << " m is the plant's";
-    }
+    for (const Strip& part : {leafBase, leaf}) expectInThePlant(seg, k, part);
     // Where the plant stands: the top of the pot, row 240 + 0.18 m x 525 px / 1 m.
     ASSERT_TRUE(seg.plantBase_px.has_value());
     EXPECT_NEAR(seg.plantBase_px->y, 240.f + 0.18f * k.fy_px, 6.f);
@@ -247,11 +250,7 @@ TEST(PlantFindingScenes, ThePlantInItsPotJoinsTheLeafPieceTheCameraIsAimedAt) {
         castScene(k, {kFloor, kWallAhead}, std::vector<Strip>{pot, stem, arm, hanging, piece}));
     ASSERT_FALSE(seg.noPlant) << seg.noBladesReason;
     ASSERT_FALSE(seg.clusterMask.empty());
-    for (const Strip& part : {piece, stem, hanging}) {
-        const cv::Mat1b drawn = castScene(k, {}, part) > 0;
-        EXPECT_GE(cv::countNonZero(seg.clusterMask & drawn), 0.6 * cv::countNonZero(drawn))
-            << "the part at x " << part.x0 << ".." << part.x1 << " m is the plant's";
-    }
+    for (const Strip& part : {piece, stem, hanging}) expectInThePlant(seg, k, part);
     ASSERT_TRUE(seg.plantBase_px.has_value());
     EXPECT_NEAR(seg.plantBase_px->y, 240.f + 0.18f * k.fy_px, 6.f) << "it stands on its pot";
 }
@@ -270,11 +269,7 @@ TEST(PlantFindingScenes, AFarPlantsLeafSixCentimetresBehindItsStemJoinsIt) {
         findIn(castScene(k, {kFloor, kWallAhead}, std::vector<Strip>{pot, stem, arm, behind}));
     ASSERT_FALSE(seg.noPlant) << seg.noBladesReason;
     ASSERT_FALSE(seg.clusterMask.empty());
-    for (const Strip& part : {stem, behind}) {
-        const cv::Mat1b drawn = castScene(k, {}, part) > 0;
-        EXPECT_GE(cv::countNonZero(seg.clusterMask & drawn), 0.6 * cv::countNonZero(drawn))
-            << "the part at x " << part.x0 << ".." << part.x1 << " m is the plant's";
-    }
+    for (const Strip& part : {stem, behind}) expectInThePlant(seg, k, part);
 }
 
 // Grass seen from straight above stands on the ground, which faces the camera.

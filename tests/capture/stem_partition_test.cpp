@@ -42,12 +42,16 @@ long bladesEndingNear(const Segmentation& seg, cv::Point tip, double within_px) 
     });
 }
 
+// One blade, and only one, ends within `within_px` of `tip`.
+void expectOneBladeEndingAt(const Segmentation& seg, cv::Point tip, double within_px) {
+    EXPECT_EQ(bladesEndingNear(seg, tip, within_px), 1) << "one blade ends at " << tip << "\n"
+                                                        << seg.summary();
+}
+
 TEST(StemPartition, LeavesLeavingAStemComeOutOneABladeWithoutTheStem) {
     const Segmentation seg = segmentByStem(plantMask());
     ASSERT_EQ(seg.blades.size(), 3u) << seg.summary();
-    for (const DrawnLeaf& leaf : kLeaves)
-        EXPECT_EQ(bladesEndingNear(seg, leaf.tip, 6.0), 1)
-            << "one blade ends at the tip " << leaf.tip;
+    for (const DrawnLeaf& leaf : kLeaves) expectOneBladeEndingAt(seg, leaf.tip, 6.0);
     for (const BladeContour& b : seg.blades) {
         EXPECT_FALSE(b.covers({100, 175})) << "the stem below the lowest leaf is no leaf's";
         EXPECT_FALSE(b.covers({100, 185}));
@@ -90,10 +94,7 @@ TEST(StemPartition, TheStemRunsOnToItsLeavesWhereALeafGoesOnMoreStraightly) {
     EXPECT_LE(cv::norm(stem.front() - cv::Point(100, 190)), 6.0) << stem.front();
     EXPECT_LE(cv::norm(stem.back() - cv::Point(125, 105)), 8.0) << stem.back();
     EXPECT_EQ(seg.blades.size(), 3u) << seg.summary();
-    for (const DrawnLeaf& leaf : leaves)
-        EXPECT_EQ(bladesEndingNear(seg, leaf.tip, 6.0), 1)
-            << "one blade ends at " << leaf.tip << "\n"
-            << seg.summary();
+    for (const DrawnLeaf& leaf : leaves) expectOneBladeEndingAt(seg, leaf.tip, 6.0);
 }
 
 // A broad stem (a grown maize shoot's, wrapped in sheaths: 21 px) that leaves leave on
@@ -115,10 +116,7 @@ TEST(StemPartition, LeavesLeavingABroadStemCloseTogetherEachLeaveItAtTheirOwnNod
     const std::vector<cv::Point>& stem = seg.clusters[0].stemLine_px;
     ASSERT_GE(stem.size(), 2u) << seg.summary();
     EXPECT_LE(stem.back().y, 145) << "the stem runs up past the lowest leaves to " << stem.back();
-    for (const DrawnLeaf& leaf : leaves)
-        EXPECT_EQ(bladesEndingNear(seg, leaf.tip, 8.0), 1)
-            << "one blade ends at " << leaf.tip << "\n"
-            << seg.summary();
+    for (const DrawnLeaf& leaf : leaves) expectOneBladeEndingAt(seg, leaf.tip, 8.0);
 }
 
 // The top pair of leaves leaves the stem's top on both sides, each arching down: through that
@@ -134,8 +132,7 @@ TEST(StemPartition, TheTopPairOfLeavesAreTwoLeaves) {
     const Segmentation seg = segmentByStem(mask);
     EXPECT_EQ(seg.blades.size(), 3u) << seg.summary();
     for (const cv::Point tip : {cv::Point(165, 150), left.back(), right.back()})
-        EXPECT_EQ(bladesEndingNear(seg, tip, 8.0), 1) << "one blade ends at " << tip << "\n"
-                                                      << seg.summary();
+        expectOneBladeEndingAt(seg, tip, 8.0);
     for (const BladeContour& b : seg.blades)
         EXPECT_FALSE(b.covers({70, 100}) && b.covers({130, 100})) << "no blade spans the top";
 }
@@ -153,8 +150,7 @@ TEST(StemPartition, APairOfLeavesLeavingOneNodeOfTheStemAreTwoLeaves) {
     const Segmentation seg = segmentByStem(mask);
     EXPECT_EQ(seg.blades.size(), 4u) << seg.summary();
     for (const cv::Point tip : {cv::Point(96, 15), cv::Point(170, 60), left.back(), right.back()})
-        EXPECT_EQ(bladesEndingNear(seg, tip, 8.0), 1) << "one blade ends at " << tip << "\n"
-                                                      << seg.summary();
+        expectOneBladeEndingAt(seg, tip, 8.0);
     for (const BladeContour& b : seg.blades)
         EXPECT_FALSE(b.covers({70, 130}) && b.covers({130, 130})) << "no blade spans the stem";
 }
