@@ -71,35 +71,34 @@ void markFreeEnds(SkeletonGraph& graph) {
 // The graph with every pixel of `notJunction` taken as a path's pixel, whatever its neighbours.
 SkeletonGraph buildGraph(const cv::Mat1b& skeleton, cv::Point root, const cv::Mat1b& notJunction) {
     SkeletonGraph graph;
+    // The skeleton is a few percent of its box: every pass below walks its pixels (in row order,
+    // as a scan of the box would meet them), not the box.
+    std::vector<cv::Point> onSkeleton;
+    cv::findNonZero(skeleton, onSkeleton);
     cv::Mat1i nodeOf(skeleton.size(), kNone);
     // Junction pixels, touching ones as one node.
     cv::Mat1b junction(skeleton.size(), std::uint8_t{0});
-    for (int y = 0; y < skeleton.rows; ++y)
-        for (int x = 0; x < skeleton.cols; ++x)
-            if (skeleton(y, x) && !notJunction(y, x) && neighbourCount(skeleton, {x, y}) >= 3)
-                junction(y, x) = 255;
+    for (const cv::Point& p : onSkeleton)
+        if (!notJunction(p) && neighbourCount(skeleton, p) >= 3) junction(p) = 255;
     cv::Mat1i junctionLabel;
     const int junctions = cv::connectedComponents(junction, junctionLabel, 8, CV_32S);
     graph.nodes.resize(static_cast<std::size_t>(std::max(0, junctions - 1)));
-    for (int y = 0; y < skeleton.rows; ++y)
-        for (int x = 0; x < skeleton.cols; ++x)
-            if (const int j = junctionLabel(y, x); j > 0) {
-                graph.nodes[static_cast<std::size_t>(j - 1)].pixels.push_back({x, y});
-                nodeOf(y, x) = j - 1;
-            }
-    // Tips (and lone pixels), and the root where it is on a path.
-    for (int y = 0; y < skeleton.rows; ++y)
-        for (int x = 0; x < skeleton.cols; ++x) {
-            const cv::Point p(x, y);
-            if (!skeleton(p) || nodeOf(p) != kNone) continue;
-            const int n = neighbourCount(skeleton, p);
-            if (n >= 2 && p != root) continue;
-            SkeletonNode node;
-            node.pixels = {p};
-            node.tip = n <= 1;
-            nodeOf(p) = static_cast<int>(graph.nodes.size());
-            graph.nodes.push_back(std::move(node));
+    for (const cv::Point& p : onSkeleton)
+        if (const int j = junctionLabel(p); j > 0) {
+            graph.nodes[static_cast<std::size_t>(j - 1)].pixels.push_back(p);
+            nodeOf(p) = j - 1;
         }
+    // Tips (and lone pixels), and the root where it is on a path.
+    for (const cv::Point& p : onSkeleton) {
+        if (nodeOf(p) != kNone) continue;
+        const int n = neighbourCount(skeleton, p);
+        if (n >= 2 && p != root) continue;
+        SkeletonNode node;
+        node.pixels = {p};
+        node.tip = n <= 1;
+        nodeOf(p) = static_cast<int>(graph.nodes.size());
+        graph.nodes.push_back(std::move(node));
+    }
     for (auto& node : graph.nodes) node.centre = centreOf(node.pixels);
     if (inside(skeleton, root) && nodeOf(root) != kNone) {
         graph.rootNode = nodeOf(root);
@@ -116,42 +115,38 @@ SkeletonGraph buildGraph(const cv::Mat1b& skeleton, cv::Point root, const cv::Ma
     };
     std::set<std::pair<int, int>> touching;
     cv::Mat1b onPath(skeleton.size(), std::uint8_t{0});
-    for (int y = 0; y < skeleton.rows; ++y)
-        for (int x = 0; x < skeleton.cols; ++x) {
-            const cv::Point p(x, y);
-            if (!skeleton(p)) continue;
-            if (nodeOf(p) == kNone) {
-                onPath(p) = 255;
-                continue;
-            }
-            for (const cv::Point& d : kNeighbours) {
-                const cv::Point q = p + d;
-                if (!inside(skeleton, q) || !skeleton(q)) continue;
-                const int a = nodeOf(p), b = nodeOf(q);
-                if (b != kNone && a != b && touching.insert(std::minmax(a, b)).second)
-                    addEdge({{}, a, b});
-            }
+    for (const cv::Point& p : onSkeleton) {
+        if (nodeOf(p) == kNone) {
+            onPath(p) = 255;
+            continue;
         }
+        for (const cv::Point& d : kNeighbours) {
+            const cv::Point q = p + d;
+            if (!inside(skeleton, q) || !skeleton(q)) continue;
+            const int a = nodeOf(p), b = nodeOf(q);
+            if (b != kNone && a != b && touching.insert(std::minmax(a, b)).second)
+                addEdge({{}, a, b});
+        }
+    }
     cv::Mat1i run;
     const int runs = cv::connectedComponents(onPath, run, 8, CV_32S);
     // Where each run touches each node: (node, the run's pixel beside it), the first seen.
     std::vector<std::vector<std::pair<int, cv::Point>>> touches(static_cast<std::size_t>(runs));
     std::vector<std::vector<cv::Point>> runPixels(static_cast<std::size_t>(runs));
-    for (int y = 0; y < skeleton.rows; ++y)
-        for (int x = 0; x < skeleton.cols; ++x) {
-            const int r = run(y, x);
-            if (r == 0) continue;
-            runPixels[static_cast<std::size_t>(r)].push_back({x, y});
-            auto& t = touches[static_cast<std::size_t>(r)];
-            for (const cv::Point& d : kNeighbours) {
-                const cv::Point q = cv::Point(x, y) + d;
-                if (!inside(skeleton, q) || nodeOf(q) == kNone) continue;
-                const bool known = std::any_of(t.begin(), t.end(), [&](const auto& nt) {
-                    return nt.first == nodeOf(q) && cv::norm(nt.second - cv::Point(x, y)) < 3.0;
-                });
-                if (!known) t.emplace_back(nodeOf(q), cv::Point(x, y));
-            }
+    for (const cv::Point& p : onSkeleton) {
+        const int r = run(p);
+        if (r == 0) continue;
+        runPixels[static_cast<std::size_t>(r)].push_back(p);
+        auto& t = touches[static_cast<std::size_t>(r)];
+        for (const cv::Point& d : kNeighbours) {
+            const cv::Point q = p + d;
+            if (!inside(skeleton, q) || nodeOf(q) == kNone) continue;
+            const bool known = std::any_of(t.begin(), t.end(), [&](const auto& nt) {
+                return nt.first == nodeOf(q) && cv::norm(nt.second - p) < 3.0;
+            });
+            if (!known) t.emplace_back(nodeOf(q), p);
         }
+    }
     for (int r = 1; r < runs; ++r) {
         const auto& t = touches[static_cast<std::size_t>(r)];
         if (t.size() < 2) continue;  // a ring of path pixels that touches no node
