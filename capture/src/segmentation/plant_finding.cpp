@@ -6,6 +6,7 @@
 // thin enough to be leaves has no plant.
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <opencv2/imgproc.hpp>
 #include <sstream>
 
@@ -89,14 +90,9 @@ std::vector<LeftOutObject> leftOutObjects(const std::vector<Cluster>& clusters,
     return out;
 }
 
-}  // namespace
-
-FoundPlant findPlant(const cv::Mat1w& depth_mm, const Intrinsics& k, const SegmenterParams& p,
-                     StageReport& report) {
-    FoundPlant plant;
-    cv::Mat1b rest = (depth_mm > 0) & (depth_mm <= p.sceneMaxDepth_m * kMillimetresPerMetre);
-    const std::vector<ScenePlane> planes = removeScenePlanes(depth_mm, k, p, rest, report);
-    std::vector<Cluster> clusters = euclideanClusters(depth_mm, k, p, rest);
+// Each cluster's share of pixels within kRemnantTolerances of a removed plane.
+void measureNearPlanes(std::vector<Cluster>& clusters, const std::vector<ScenePlane>& planes,
+                       const cv::Mat1w& depth_mm, const Intrinsics& k, const SegmenterParams& p) {
     for (Cluster& c : clusters) {
         int near = 0;
         const cv::Rect box = cv::boundingRect(c.mask);
@@ -115,30 +111,38 @@ FoundPlant findPlant(const cv::Mat1w& depth_mm, const Intrinsics& k, const Segme
             }
         c.nearPlanes = static_cast<float>(near) / static_cast<float>(std::max(1, c.area_px));
     }
-    // A pixel spans 1 / (fx fy) steradians near the optical axis.
-    const int minArea_px =
-        static_cast<int>(std::min(p.plantMinImageShare * static_cast<float>(depth_mm.total()),
-                                  p.plantMinSolidAngle_sr * k.fx_px * k.fy_px));
-    std::ostringstream seen;
-    seen.precision(2);
-    std::vector<std::size_t> thin;
+}
+
+// The clusters sorted out: those that could be a plant, why each other is not, and what to tell
+// a user when none could.
+struct Sorting {
+    std::vector<std::size_t> thin;  // thin, large, borne and below the view's top: candidates
+    std::vector<std::string> tag;   // why each is not a plant, in a few words (empty: it could be)
+    // Why the largest object is not a plant, for a user whose plant was not found.
+    std::string largestUnlike;
+    std::size_t largestIndex = 0;
+    // And the largest object only too small to be one: a plant too far away, most likely, once
+    // it covers half the least a plant does.
+    std::string largestSmall;
+    std::size_t largestSmallIndex = 0;
+    int offTop = 0;   // thin and large enough, but running off the top of the view
+    int unborne = 0;  // thin and large enough, but nothing in view to stand on
+};
+
+// Takes each cluster's pot (the thick part it stands in) off it and measures what grows out of
+// it against a plant's leaves.
+Sorting sortOut(std::vector<Cluster>& clusters, const std::vector<ScenePlane>& planes,
+                const cv::Mat1w& depth_mm, const Intrinsics& k, const SegmenterParams& p,
+                int minArea_px) {
+    Sorting out;
+    out.tag.resize(clusters.size());
+    out.largestIndex = out.largestSmallIndex = clusters.size();
+    int largestArea_px = 0, largestSmallArea_px = minArea_px / 2;
     const SensedExtent sensed = SensedExtent::of(depth_mm);
-    int offTop = 0;  // thin and large enough, but running off the top of the view
     // A plant stands on a floor, a table top or the ground, and the guide keeps its base in
     // view. With none in view, what is thin and long is a strip of the room (a curtain's edge
     // against the far wall, a shelf's), or the camera looks where no foot can be found.
     const bool bearingInView = std::any_of(planes.begin(), planes.end(), bearsThings);
-    int unborne = 0;  // thin and large enough, but nothing in view to stand on
-    // Why the largest object is not a plant, for a user whose plant was not found.
-    std::string largestUnlike;
-    int largestArea_px = 0;
-    std::size_t largestIndex = clusters.size();
-    // And the largest object only too small to be one: a plant too far away, most likely, once
-    // it covers half the least a plant does.
-    std::string largestSmall;
-    int largestSmallArea_px = minArea_px / 2;
-    std::size_t largestSmallIndex = clusters.size();
-    std::vector<std::string> tag(clusters.size());  // why each is not a plant, in a few words
     for (std::size_t i = 0; i < clusters.size(); ++i) {
         Cluster& c = clusters[i];
         // A pot, a box on the floor, a chair's seat: what stands thick on its bottom goes first,
@@ -153,88 +157,87 @@ FoundPlant findPlant(const cv::Mat1w& depth_mm, const Intrinsics& k, const Segme
         // What keeps it from being a plant, empty when nothing does.
         std::ostringstream why;
         why.precision(2);
+        std::string& tag = out.tag[i];
         if (const std::string parts = unlikeLeafParts(shape, p); !parts.empty()) {
             why << "is " << parts;
-            tag[i] = shape.width_m > p.plantMaxMeanWidth_m ? "too wide" : "too short for its width";
+            tag = shape.width_m > p.plantMaxMeanWidth_m ? "too wide" : "too short for its width";
         } else if (c.nearPlanes > kMaxRemnantShare) {
             why << "lies along the floor or a wall (what their removal left)";
-            tag[i] = "floor or wall";
+            tag = "floor or wall";
         } else if (c.height_m < p.plantMinHeight_m || c.area_px < minArea_px) {
-            tag[i] = "too small";
+            tag = "too small";
             why << "is too small (" << c.area_px << " px; a plant: at least " << minArea_px
                 << " px and " << p.plantMinHeight_m * 100 << " cm tall)";
             if (c.area_px > largestSmallArea_px) {
                 largestSmallArea_px = c.area_px;
-                largestSmallIndex = i;
+                out.largestSmallIndex = i;
                 std::ostringstream small;
                 small.precision(2);
                 small << "the largest thin one, " << c.height_m << " m tall at " << c.medianDepth_m
                       << " m, " << why.str() << kBringCloser;
-                largestSmall = small.str();
+                out.largestSmall = small.str();
             }
         }
         const std::string unlike = why.str();
         if (c.area_px > largestArea_px) {
             largestArea_px = c.area_px;
-            largestIndex = i;
+            out.largestIndex = i;
             std::ostringstream largest;
             largest.precision(2);
             if (!unlike.empty())
                 largest << "the largest, " << c.height_m << " m tall at " << c.medianDepth_m
                         << " m, " << unlike;
-            largestUnlike = largest.str();
+            out.largestUnlike = largest.str();
         }
-        if (unlike.empty()) {
-            // A plant put before the camera is seen up to its top leaves; what goes on above
-            // the view (a door's frame, a curtain, a lamp's pole) is the room's.
-            if (runsOffTop(c.mask, sensed)) {
-                ++offTop;
-                tag[i] = "runs off the top";
-                continue;
-            }
-            if (!bearingInView) {
-                ++unborne;
-                tag[i] = "nothing to stand on";
-                continue;
-            }
-            thin.push_back(i);
+        if (!unlike.empty()) continue;
+        // A plant put before the camera is seen up to its top leaves; what goes on above the
+        // view (a door's frame, a curtain, a lamp's pole) is the room's.
+        if (runsOffTop(c.mask, sensed)) {
+            ++out.offTop;
+            tag = "runs off the top";
+        } else if (!bearingInView) {
+            ++out.unborne;
+            tag = "nothing to stand on";
+        } else {
+            out.thin.push_back(i);
         }
     }
-    report.notes.push_back(std::to_string(clusters.size()) + " cluster(s) after " +
-                           std::to_string(planes.size()) + " scene plane(s), " +
-                           std::to_string(thin.size()) + " thin enough to be a plant");
-    if (thin.empty()) {
-        std::ostringstream why;
-        why.precision(2);
-        why << "no plant in view: ";
-        if (clusters.empty())
-            why << "nothing stands apart from the floor and walls";
-        else
-            why << clusters.size() << " object(s) stand apart from the floor and walls, none "
-                << "large enough and made of parts under " << p.plantMaxMeanWidth_m * 100
-                << " cm wide and " << kMinLeafElongation << " times as long, as leaves are";
-        if (!largestUnlike.empty()) why << "; " << largestUnlike;
-        if (!largestSmall.empty())  // the largest itself, or another
-            why << (largestSmallIndex == largestIndex ? std::string(kBringCloser)
-                                                      : "; " + largestSmall);
-        if (offTop > 0)
-            why << "; " << offTop << " that run(s) off the top of the view (a plant too near "
-                << "the camera, or a pole or frame of the room)";
-        if (unborne > 0)
-            why << "; " << unborne
-                << " thin enough, but no floor, table top or ground in view (a plant "
-                << "stands on one: keep it in view, the camera upright)";
-        plant.whyNot = why.str();
-        plant.leftOut = leftOutObjects(clusters, tag, std::vector<char>(clusters.size(), 0),
-                                       minArea_px / kLeftOutShareOfPlant);
-        return plant;
-    }
-    // The one the camera is aimed at: nearest the image's centre, among those at least a tenth
-    // the size of the largest thin one (a stray leaf of the clutter is not the subject).
+    return out;
+}
+
+// "no plant in view: ..." with what was seen instead.
+std::string noPlantReason(const Sorting& s, std::size_t clusters, const SegmenterParams& p) {
+    std::ostringstream why;
+    why.precision(2);
+    why << "no plant in view: ";
+    if (clusters == 0)
+        why << "nothing stands apart from the floor and walls";
+    else
+        why << clusters << " object(s) stand apart from the floor and walls, none "
+            << "large enough and made of parts under " << p.plantMaxMeanWidth_m * 100
+            << " cm wide and " << kMinLeafElongation << " times as long, as leaves are";
+    if (!s.largestUnlike.empty()) why << "; " << s.largestUnlike;
+    if (!s.largestSmall.empty())  // the largest itself, or another
+        why << (s.largestSmallIndex == s.largestIndex ? std::string(kBringCloser)
+                                                      : "; " + s.largestSmall);
+    if (s.offTop > 0)
+        why << "; " << s.offTop << " that run(s) off the top of the view (a plant too near "
+            << "the camera, or a pole or frame of the room)";
+    if (s.unborne > 0)
+        why << "; " << s.unborne
+            << " thin enough, but no floor, table top or ground in view (a plant "
+            << "stands on one: keep it in view, the camera upright)";
+    return why.str();
+}
+
+// The one the camera is aimed at: nearest the image's centre, among those at least a tenth the
+// size of the largest thin one (a stray leaf of the clutter is not the subject).
+std::size_t aimedAt(const std::vector<Cluster>& clusters, const std::vector<std::size_t>& thin,
+                    cv::Size frame) {
     int largest = 0;
     for (std::size_t i : thin) largest = std::max(largest, clusters[i].area_px);
-    const cv::Point2f centre(0.5f * static_cast<float>(depth_mm.cols),
-                             0.5f * static_cast<float>(depth_mm.rows));
+    const cv::Point2f centre(0.5f * static_cast<float>(frame.width),
+                             0.5f * static_cast<float>(frame.height));
     std::size_t chosen = thin.front();
     float best = std::numeric_limits<float>::max();
     for (std::size_t i : thin) {
@@ -242,10 +245,18 @@ FoundPlant findPlant(const cv::Mat1w& depth_mm, const Intrinsics& k, const Segme
         const float d = static_cast<float>(cv::norm(clusters[i].centroid_px - centre));
         if (d < best) best = d, chosen = i;
     }
-    // A plant whose leaves meet only at a stem the sensor hardly reads, or only across depth
-    // jumps, falls apart into one cluster a leaf: the thin clusters whose bounds come within
-    // the leaf gap at the plant's depth of the plant's join it, in turn; not what stood on
-    // something thick (a box's remains) nor slivers of the floor and wall.
+    return chosen;
+}
+
+// A plant whose leaves meet only at a stem the sensor hardly reads, or only across depth jumps,
+// falls apart into one cluster a leaf: the thin clusters whose bounds come within the leaf gap
+// at the plant's depth of the plant's join it (`chosen`), in turn; not what stood on something
+// thick (a box's remains) nor slivers of the floor and wall. Returns which joined; tags those
+// thin ones that did not.
+std::vector<char> joinThePlantsPieces(std::vector<Cluster>& clusters, std::size_t chosen,
+                                      Sorting& sorting, const std::vector<ScenePlane>& planes,
+                                      const cv::Mat1w& depth_mm, const Intrinsics& k,
+                                      const SegmenterParams& p) {
     Cluster& c = clusters[chosen];
     // A thick base high above the floor is a broad leaf's, in a piece the plant broke into: no
     // pot, and the piece's own. Each object's is measured once: a room leaves dozens.
@@ -269,7 +280,7 @@ FoundPlant findPlant(const cv::Mat1w& depth_mm, const Intrinsics& k, const Segme
     const float leafGap_m = planeTolerance_m(kLeafGap_m, c.medianDepth_m);
     const int pieceArea_px = c.area_px;
     std::vector<char> isThin(clusters.size(), 0);
-    for (const std::size_t i : thin) isThin[i] = 1;
+    for (const std::size_t i : sorting.thin) isThin[i] = 1;
     for (bool grew = true; grew;) {
         grew = false;
         for (std::size_t i = 0; i < clusters.size(); ++i) {
@@ -293,10 +304,55 @@ FoundPlant findPlant(const cv::Mat1w& depth_mm, const Intrinsics& k, const Segme
         }
     }
     c.area_px = cv::countNonZero(c.mask);
-    for (const std::size_t i : thin)
+    for (const std::size_t i : sorting.thin)
         if (!joined[i])
-            tag[i] = potStands[i] ? "stands in a pot of its own" : "apart from the plant";
-    plant.leftOut = leftOutObjects(clusters, tag, joined, minArea_px / kLeftOutShareOfPlant);
+            sorting.tag[i] = potStands[i] ? "stands in a pot of its own" : "apart from the plant";
+    return joined;
+}
+
+// Where the plant stands: the top middle of its pot, or else the middle of its lowest row.
+cv::Point2f footOf(const cv::Mat1b& plant, const cv::Mat1b& pot) {
+    const bool inPot = cv::countNonZero(pot) > 0;
+    const cv::Mat1b& foot = inPot ? pot : plant;
+    const cv::Rect footBox = cv::boundingRect(foot);
+    const int footRow = inPot ? footBox.y : footBox.y + footBox.height - 1;
+    std::vector<cv::Point> row;
+    cv::findNonZero(foot.row(footRow), row);
+    float sum = 0.f;
+    for (const cv::Point& q : row) sum += static_cast<float>(q.x);
+    return {row.empty() ? footBox.x + 0.5f * footBox.width : sum / row.size(),
+            static_cast<float>(footRow)};
+}
+
+}  // namespace
+
+FoundPlant findPlant(const cv::Mat1w& depth_mm, const Intrinsics& k, const SegmenterParams& p,
+                     StageReport& report) {
+    FoundPlant plant;
+    cv::Mat1b rest = (depth_mm > 0) & (depth_mm <= p.sceneMaxDepth_m * kMillimetresPerMetre);
+    const std::vector<ScenePlane> planes = removeScenePlanes(depth_mm, k, p, rest, report);
+    std::vector<Cluster> clusters = euclideanClusters(depth_mm, k, p, rest);
+    measureNearPlanes(clusters, planes, depth_mm, k, p);
+    // A pixel spans 1 / (fx fy) steradians near the optical axis.
+    const int minArea_px =
+        static_cast<int>(std::min(p.plantMinImageShare * static_cast<float>(depth_mm.total()),
+                                  p.plantMinSolidAngle_sr * k.fx_px * k.fy_px));
+    Sorting sorting = sortOut(clusters, planes, depth_mm, k, p, minArea_px);
+    report.notes.push_back(std::to_string(clusters.size()) + " cluster(s) after " +
+                           std::to_string(planes.size()) + " scene plane(s), " +
+                           std::to_string(sorting.thin.size()) + " thin enough to be a plant");
+    if (sorting.thin.empty()) {
+        plant.whyNot = noPlantReason(sorting, clusters.size(), p);
+        plant.leftOut = leftOutObjects(clusters, sorting.tag, std::vector<char>(clusters.size(), 0),
+                                       minArea_px / kLeftOutShareOfPlant);
+        return plant;
+    }
+    const std::size_t chosen = aimedAt(clusters, sorting.thin, depth_mm.size());
+    const std::vector<char> joined =
+        joinThePlantsPieces(clusters, chosen, sorting, planes, depth_mm, k, p);
+    plant.leftOut =
+        leftOutObjects(clusters, sorting.tag, joined, minArea_px / kLeftOutShareOfPlant);
+    const Cluster& c = clusters[chosen];
     const cv::Mat1b& pot = c.pot;
     std::ostringstream note;
     note.precision(2);
@@ -306,16 +362,7 @@ FoundPlant findPlant(const cv::Mat1w& depth_mm, const Intrinsics& k, const Segme
     report.notes.push_back(note.str());
     plant.found = true;
     plant.mask = c.mask;
-    // Where the plant stands: the top middle of its pot, or else the middle of its lowest row.
-    const cv::Mat1b& foot = cv::countNonZero(pot) > 0 ? pot : c.mask;
-    const cv::Rect footBox = cv::boundingRect(foot);
-    const int footRow = cv::countNonZero(pot) > 0 ? footBox.y : footBox.y + footBox.height - 1;
-    std::vector<cv::Point> row;
-    cv::findNonZero(foot.row(footRow), row);
-    float sum = 0.f;
-    for (const cv::Point& q : row) sum += static_cast<float>(q.x);
-    plant.base_px = {row.empty() ? footBox.x + 0.5f * footBox.width : sum / row.size(),
-                     static_cast<float>(footRow)};
+    plant.base_px = footOf(c.mask, pot);
     double nearest = 0, farthest = 0;
     cv::minMaxLoc(depth_mm, &nearest, &farthest, nullptr, nullptr, c.mask);
     plant.near_m = static_cast<float>(nearest) / kMillimetresPerMetre;
