@@ -154,128 +154,37 @@ bool continuesTheMask(const cv::Mat1b& mask, cv::Point at, const std::vector<cv:
 
 }  // namespace
 
-TipTrails recoverTipTrails(const cv::Mat1b& candidates, const cv::Mat1b& recurring,
-                           const SegmenterParams& params, cv::Mat1b& mask, StageReport& report) {
-    if (!(params.tipTrailMinReach_px > 0.f) || candidates.empty()) return {};
-    const cv::Rect maskBox = cv::boundingRect(mask);
-    if (maskBox.empty()) {
-        report.notes.push_back("the mask is empty: no tip to follow");
-        return {};
-    }
-    const int gap = params.tipTrailGap_px;
-    const cv::Rect box =
-        grownWithin(maskBox, params.tipTrailMaxLength_px, cv::Rect(0, 0, mask.cols, mask.rows));
-    cv::Mat1b inMask = mask(box);  // a view: what is set in it is set in `mask`
-    cv::Mat1b loose;  // in-band readings off the mask: candidates minus mask (saturating)
-    cv::subtract(candidates(box), inMask, loose);
-    cv::Mat1b own;  // this frame's own readings among them, for the raggedness
-    if (!recurring.empty()) {
-        own = loose.clone();
-        cv::Mat1b more;
-        cv::subtract(recurring(box), inMask, more);
-        loose |= more;
-    }
-    if (cv::countNonZero(loose) == 0) {
-        report.notes.push_back("every in-band reading is on the mask: no trail to follow");
-        return {};
-    }
+namespace {
 
-    // Distance to the mask by a rectangular dilation (chessboard distance): a full distance
-    // transform of the box cost more than the rest of the front end. A reading touches the mask
-    // (edge, not trail) when one of its eight neighbours is on it.
-    const int linkRadius_px = gap + 1;  // a trail reading links to a pixel this close (or nearer)
-    const auto zone = [&](int radius) {
-        cv::Mat1b z;
-        cv::dilate(inMask, z,
-                   cv::getStructuringElement(cv::MORPH_RECT, {2 * radius + 1, 2 * radius + 1}));
-        return z;
-    };
-    const cv::Rect inBox({0, 0}, box.size());
-    const auto adjacent = [&](cv::Point p) {
+// The box tip trails are sought in (the mask's box grown by the longest trail), the mask within
+// it, and the in-band readings off the mask there.
+struct TrailBox {
+    cv::Rect box;
+    cv::Mat1b inMask;  // a view of the mask: what is set in it is set in the mask
+    cv::Mat1b loose;   // in-band readings off the mask (candidates and recurring readings)
+    cv::Mat1b own;     // this frame's own readings among them, for the raggedness (may be empty)
+    cv::Rect inBox;    // the box in its own coordinates
+    int linkRadius_px = 0;  // a trail reading links to a pixel this close (or nearer)
+
+    // A reading touches the mask (edge, not trail) when one of its eight neighbours is on it.
+    [[nodiscard]] bool adjacent(cv::Point p) const {
         for (int dy = -1; dy <= 1; ++dy)
             for (int dx = -1; dx <= 1; ++dx)
                 if (const cv::Point q = p + cv::Point(dx, dy); inBox.contains(q) && inMask(q))
                     return true;
         return false;
-    };
-    const cv::Mat1b touching = zone(linkRadius_px);
-    const int reach = std::max(1, static_cast<int>(std::ceil(params.tipTrailMinReach_px)));
-    const cv::Mat1b near = reach - 1 == linkRadius_px ? touching : zone(reach - 1);
-    // Trails start at readings near the mask that do not touch it.
-    std::vector<cv::Point> seeds;
-    std::size_t ownSeeds = 0;
-    for (int y = 0; y < box.height; ++y) {
-        const std::uint8_t* l = loose[y];
-        const std::uint8_t* t = touching[y];
-        const std::uint8_t* o = own.empty() ? l : own[y];
-        for (int x = 0; x < box.width; ++x)
-            if (l[x] && t[x] && !adjacent({x, y})) {
-                seeds.emplace_back(x, y);
-                ownSeeds += o[x] != 0;
-            }
     }
-    // How ragged the edges are: the share of the pixels 2 to linkRadius_px outside the mask
-    // that hold an in-band reading (that band is about (linkRadius_px - 1) / linkRadius_px of
-    // the zone around the mask). Lateral noise of 0.8 px puts few readings there, three times
-    // that many; then speckle chains reach as far as tips do and cannot be told from them.
-    const double ringPixels = (cv::countNonZero(touching) - cv::countNonZero(inMask)) *
-                              (linkRadius_px - 1.0) / linkRadius_px;
-    const double ragged = ringPixels > 0.0 ? static_cast<double>(ownSeeds) / ringPixels : 0.0;
-    TipTrails result;
-    result.raggedness = static_cast<float>(ragged);
-    if (ragged > params.tipTrailMaxRaggedness) {
-        report.notes.push_back(
-            "edges too ragged to follow tips: " + std::to_string(std::lround(100.0 * ragged)) +
-            " % of the pixels 2-" + std::to_string(linkRadius_px) +
-            " px outside the mask hold in-band readings (tipTrailMaxRaggedness " +
-            std::to_string(std::lround(100.0 * params.tipTrailMaxRaggedness)) + " %)");
-        return result;
+    // The mask grown by `radius` (chessboard distance, a rectangular dilation): a full distance
+    // transform of the box cost more than the rest of the front end.
+    [[nodiscard]] cv::Mat1b zone(int radius) const {
+        cv::Mat1b z;
+        cv::dilate(inMask, z,
+                   cv::getStructuringElement(cv::MORPH_RECT, {2 * radius + 1, 2 * radius + 1}));
+        return z;
     }
-    // Readings up to `gap` px apart belong to one trail. Groups are grown from the seeds only (a
-    // flood fill over the sparse readings; labelling every component of the box costs more).
-    // A group larger than a line of the longest trail (kMaxTrailWidth_px times as many readings)
-    // is a surface, such as ground the band kept or a leaf behind, and is not followed.
-    const int step = gap + 1;
-    const int maxGroup = kMaxTrailWidth_px * params.tipTrailMaxLength_px;
-    cv::Mat1b seen(box.size(), std::uint8_t{0});
-    struct Group {
-        std::vector<cv::Point> trail;  // its readings not touching the mask
-        cv::Rect bounds;
-        bool reaches = false;
-    };
-    std::vector<Group> groups;
-    int rejectedWide = 0;
-    std::vector<cv::Point> queue;
-    for (const cv::Point seed : seeds) {
-        if (seen(seed)) continue;
-        Group g;
-        bool wide = false;
-        queue.assign(1, seed);
-        seen(seed) = 255;
-        for (size_t head = 0; head < queue.size() && !wide; ++head) {
-            const cv::Point p = queue[head];
-            g.bounds |= cv::Rect(p, cv::Size(1, 1));
-            g.reaches |= near(p) == 0;
-            if (!adjacent(p)) g.trail.push_back(p);
-            for (int dy = -step; dy <= step; ++dy)
-                for (int dx = -step; dx <= step; ++dx) {
-                    const cv::Point q = p + cv::Point(dx, dy);
-                    if (!inBox.contains(q) || !loose(q) || seen(q)) continue;
-                    seen(q) = 255;
-                    queue.push_back(q);
-                }
-            wide = static_cast<int>(queue.size()) > maxGroup;
-        }
-        if (wide) {
-            ++rejectedWide;
-            continue;
-        }
-        groups.push_back(std::move(g));
-    }
-
-    cv::Mat1b added(box.size(), std::uint8_t{0});
-    const int window = linkRadius_px;
-    const auto nearest = [&](cv::Point p, const cv::Mat1b& on) {
+    // The nearest pixel of `on` within linkRadius_px of `p`; x < 0 when none.
+    [[nodiscard]] cv::Point nearest(cv::Point p, const cv::Mat1b& on) const {
+        const int window = linkRadius_px;
         cv::Point best(-1, -1);
         int bestD2 = window * window * 2 + 1;
         for (int dy = -window; dy <= window; ++dy)
@@ -288,30 +197,111 @@ TipTrails recoverTipTrails(const cv::Mat1b& candidates, const cv::Mat1b& recurri
                 }
             }
         return best;
-    };
+    }
+};
+
+// Readings grouped into trails: those up to `gap` px apart belong to one.
+struct TrailGroup {
+    std::vector<cv::Point> trail;  // its readings not touching the mask
+    cv::Rect bounds;
+    bool reaches = false;  // some reading lies tipTrailMinReach_px or more from the mask
+};
+
+// Trails start at readings near the mask that do not touch it; `ownSeeds`: how many of them
+// are this frame's own readings.
+std::vector<cv::Point> trailSeeds(const TrailBox& t, const cv::Mat1b& touching,
+                                  std::size_t& ownSeeds) {
+    std::vector<cv::Point> seeds;
+    ownSeeds = 0;
+    for (int y = 0; y < t.box.height; ++y) {
+        const std::uint8_t* l = t.loose[y];
+        const std::uint8_t* o = t.own.empty() ? l : t.own[y];
+        const std::uint8_t* near = touching[y];
+        for (int x = 0; x < t.box.width; ++x)
+            if (l[x] && near[x] && !t.adjacent({x, y})) {
+                seeds.emplace_back(x, y);
+                ownSeeds += o[x] != 0;
+            }
+    }
+    return seeds;
+}
+
+// Groups are grown from the seeds only (a flood fill over the sparse readings; labelling every
+// component of the box costs more). A group larger than a line of the longest trail
+// (kMaxTrailWidth_px times as many readings) is a surface, such as ground the band kept or a
+// leaf behind, and is not followed (counted in `rejectedWide`).
+std::vector<TrailGroup> groupReadings(const TrailBox& t, const std::vector<cv::Point>& seeds,
+                                      const cv::Mat1b& near, const SegmenterParams& params,
+                                      int& rejectedWide) {
+    const int step = params.tipTrailGap_px + 1;
+    const int maxGroup = kMaxTrailWidth_px * params.tipTrailMaxLength_px;
+    cv::Mat1b seen(t.box.size(), std::uint8_t{0});
+    std::vector<TrailGroup> groups;
+    rejectedWide = 0;
+    std::vector<cv::Point> queue;
+    for (const cv::Point seed : seeds) {
+        if (seen(seed)) continue;
+        TrailGroup g;
+        bool wide = false;
+        queue.assign(1, seed);
+        seen(seed) = 255;
+        for (size_t head = 0; head < queue.size() && !wide; ++head) {
+            const cv::Point p = queue[head];
+            g.bounds |= cv::Rect(p, cv::Size(1, 1));
+            g.reaches |= near(p) == 0;
+            if (!t.adjacent(p)) g.trail.push_back(p);
+            for (int dy = -step; dy <= step; ++dy)
+                for (int dx = -step; dx <= step; ++dx) {
+                    const cv::Point q = p + cv::Point(dx, dy);
+                    if (!t.inBox.contains(q) || !t.loose(q) || seen(q)) continue;
+                    seen(q) = 255;
+                    queue.push_back(q);
+                }
+            wide = static_cast<int>(queue.size()) > maxGroup;
+        }
+        if (wide) {
+            ++rejectedWide;
+            continue;
+        }
+        groups.push_back(std::move(g));
+    }
+    return groups;
+}
+
+// What linking the groups did.
+struct Linked {
     int accepted = 0, rejectedShort = 0, rejectedSideways = 0, pixels = 0;
-    cv::Mat1b onPart(box.size(), std::uint8_t{0});  // the part being linked
+};
+
+// Each group split into its trails, each trail that reaches far enough and runs on out of a tip
+// linked onto the mask, one pixel wide, into `added` (box coordinates).
+Linked linkTrails(const TrailBox& t, const std::vector<TrailGroup>& groups, const cv::Mat1b& near,
+                  const SegmenterParams& params, cv::Mat1b& added) {
+    Linked out;
+    const int step = params.tipTrailGap_px + 1;
+    const int window = t.linkRadius_px;
+    cv::Mat1b onPart(t.box.size(), std::uint8_t{0});  // the part being linked
     for (const auto& group : groups) {
         // A trail starts at the mask (its seed, which does not touch it, is among its first
         // readings) and must reach far enough from it.
         if (!group.reaches) {
-            ++rejectedShort;
+            ++out.rejectedShort;
             continue;
         }
-        const cv::Rect local = grownWithin(group.bounds, window + 1, inBox);
+        const cv::Rect local = grownWithin(group.bounds, window + 1, t.inBox);
         cv::Mat1f distance;
-        cv::distanceTransform(~inMask(local), distance, cv::DIST_L2, cv::DIST_MASK_5);
+        cv::distanceTransform(~t.inMask(local), distance, cv::DIST_L2, cv::DIST_MASK_5);
         const auto distanceOf = [&](cv::Point p) { return distance(p - local.tl()); };
-        const auto onMask = [&](cv::Point p) { return nearest(p, inMask); };
+        const auto onMask = [&](cv::Point p) { return t.nearest(p, t.inMask); };
         for (const TrailPart& part :
              splitByAttachment(group.trail, local, onMask, distanceOf, step)) {
             if (std::none_of(part.readings.begin(), part.readings.end(),
                              [&](cv::Point p) { return near(p) == 0; })) {
-                ++rejectedShort;
+                ++out.rejectedShort;
                 continue;
             }
-            if (!continuesTheMask(inMask, part.attachedAt, part.readings, distanceOf)) {
-                ++rejectedSideways;
+            if (!continuesTheMask(t.inMask, part.attachedAt, part.readings, distanceOf)) {
+                ++out.rejectedSideways;
                 continue;
             }
             // Each reading links to the nearest pixel already on its part or, near where the
@@ -320,52 +310,109 @@ TipTrails recoverTipTrails(const cv::Mat1b& candidates, const cv::Mat1b& recurri
             // for crossing blades, or add a spur beside it).
             onPart(local).setTo(0);
             for (const cv::Point p : part.readings) {
-                cv::Point to = nearest(p, onPart);
+                cv::Point to = t.nearest(p, onPart);
                 if (to.x < 0) {
-                    to = nearest(p, inMask);
+                    to = t.nearest(p, t.inMask);
                     if (to.x < 0 || std::abs(to.x - part.attachedAt.x) > kAttachSpread_px ||
                         std::abs(to.y - part.attachedAt.y) > kAttachSpread_px)
                         continue;
                 }
                 cv::line(onPart, to, p, 255, 1, cv::LINE_8);
             }
-            onPart(local).setTo(0, inMask(local));
+            onPart(local).setTo(0, t.inMask(local));
             const int count = cv::countNonZero(onPart(local) & ~added(local));
             if (count == 0) continue;
             added(local) |= onPart(local);
-            pixels += count;
-            ++accepted;
+            out.pixels += count;
+            ++out.accepted;
         }
     }
-    if (rejectedSideways > 0)
-        report.notes.push_back(std::to_string(rejectedSideways) +
+    return out;
+}
+
+}  // namespace
+
+TipTrails recoverTipTrails(const cv::Mat1b& candidates, const cv::Mat1b& recurring,
+                           const SegmenterParams& params, cv::Mat1b& mask, StageReport& report) {
+    if (!(params.tipTrailMinReach_px > 0.f) || candidates.empty()) return {};
+    const cv::Rect maskBox = cv::boundingRect(mask);
+    if (maskBox.empty()) {
+        report.notes.push_back("the mask is empty: no tip to follow");
+        return {};
+    }
+    TrailBox t;
+    t.box = grownWithin(maskBox, params.tipTrailMaxLength_px, cv::Rect(0, 0, mask.cols, mask.rows));
+    t.inMask = mask(t.box);
+    cv::subtract(candidates(t.box), t.inMask, t.loose);  // saturating: candidates off the mask
+    if (!recurring.empty()) {
+        t.own = t.loose.clone();
+        cv::Mat1b more;
+        cv::subtract(recurring(t.box), t.inMask, more);
+        t.loose |= more;
+    }
+    if (cv::countNonZero(t.loose) == 0) {
+        report.notes.push_back("every in-band reading is on the mask: no trail to follow");
+        return {};
+    }
+    t.inBox = cv::Rect({0, 0}, t.box.size());
+    t.linkRadius_px = params.tipTrailGap_px + 1;
+    const int linkRadius_px = t.linkRadius_px;
+    const cv::Mat1b touching = t.zone(linkRadius_px);
+    const int reach = std::max(1, static_cast<int>(std::ceil(params.tipTrailMinReach_px)));
+    const cv::Mat1b near = reach - 1 == linkRadius_px ? touching : t.zone(reach - 1);
+    std::size_t ownSeeds = 0;
+    const std::vector<cv::Point> seeds = trailSeeds(t, touching, ownSeeds);
+    // How ragged the edges are: the share of the pixels 2 to linkRadius_px outside the mask
+    // that hold an in-band reading (that band is about (linkRadius_px - 1) / linkRadius_px of
+    // the zone around the mask). Lateral noise of 0.8 px puts few readings there, three times
+    // that many; then speckle chains reach as far as tips do and cannot be told from them.
+    const double ringPixels = (cv::countNonZero(touching) - cv::countNonZero(t.inMask)) *
+                              (linkRadius_px - 1.0) / linkRadius_px;
+    const double ragged = ringPixels > 0.0 ? static_cast<double>(ownSeeds) / ringPixels : 0.0;
+    TipTrails result;
+    result.raggedness = static_cast<float>(ragged);
+    if (ragged > params.tipTrailMaxRaggedness) {
+        report.notes.push_back(
+            "edges too ragged to follow tips: " + std::to_string(std::lround(100.0 * ragged)) +
+            " % of the pixels 2-" + std::to_string(linkRadius_px) +
+            " px outside the mask hold in-band readings (tipTrailMaxRaggedness " +
+            std::to_string(std::lround(100.0 * params.tipTrailMaxRaggedness)) + " %)");
+        return result;
+    }
+    int rejectedWide = 0;
+    const std::vector<TrailGroup> groups = groupReadings(t, seeds, near, params, rejectedWide);
+    cv::Mat1b added(t.box.size(), std::uint8_t{0});
+    Linked linked = linkTrails(t, groups, near, params, added);
+    if (linked.rejectedSideways > 0)
+        report.notes.push_back(std::to_string(linked.rejectedSideways) +
                                " reading group(s) leave the mask sideways, not out of a tip: "
                                "edge noise, not followed");
     if (rejectedWide > 0)
         report.notes.push_back(
             std::to_string(rejectedWide) +
             " reading group(s) beside the mask too wide for a tip: not followed");
-    if (rejectedShort > 0)
-        report.notes.push_back(std::to_string(rejectedShort) +
+    if (linked.rejectedShort > 0)
+        report.notes.push_back(std::to_string(linked.rejectedShort) +
                                " reading group(s) beside the mask reach less than " +
                                std::to_string(params.tipTrailMinReach_px).substr(0, 4) +
                                " px from it: edge noise, not tips");
-    if (accepted == 0) {
+    if (linked.accepted == 0) {
         report.notes.push_back("no tip trail found");
         return result;
     }
-    inMask.setTo(255, added);
+    t.inMask.setTo(255, added);
     // A trail that runs beside its blade for a few pixels before it meets it encloses a sliver
     // of background; such slivers are filled as the clean-up fills small holes.
     // A sliver of at most maxHoleArea_px beside a trail lies within that distance of it.
-    const cv::Rect sliverBox = grownWithin(cv::boundingRect(added), params.maxHoleArea_px + 1,
-                                           cv::Rect({0, 0}, box.size()));
-    cv::Mat1b sliverMask = inMask(sliverBox);
-    pixels += fillSlivers(sliverMask, added(sliverBox), params.maxHoleArea_px);
-    report.notes.push_back(std::to_string(accepted) + " tip trail(s) of dotted in-band readings " +
-                           "linked back onto the mask (" + std::to_string(pixels) + " px)");
+    const cv::Rect sliverBox =
+        grownWithin(cv::boundingRect(added), params.maxHoleArea_px + 1, t.inBox);
+    cv::Mat1b sliverMask = t.inMask(sliverBox);
+    linked.pixels += fillSlivers(sliverMask, added(sliverBox), params.maxHoleArea_px);
+    report.notes.push_back(std::to_string(linked.accepted) +
+                           " tip trail(s) of dotted in-band readings " +
+                           "linked back onto the mask (" + std::to_string(linked.pixels) + " px)");
     const cv::Rect addedBox = cv::boundingRect(added);
-    result.box = addedBox + box.tl();
+    result.box = addedBox + t.box.tl();
     result.added = added(addedBox).clone();
     return result;
 }
