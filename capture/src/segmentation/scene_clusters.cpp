@@ -118,7 +118,7 @@ std::vector<Cluster> euclideanClusters(const cv::Mat1w& depth_mm, const Intrinsi
     for (std::size_t i = 0; i < s.size(); ++i) {
         const int at = s[i].px.y / kClusterStride_px * gw + s[i].px.x / kClusterStride_px;
         indices->push_back(at);
-        (*cloud)[static_cast<std::size_t>(at)] = s[i].p;
+        (*cloud)[static_cast<std::size_t>(at)] = {s[i].p.x, s[i].p.y, s[i].p.z};
         sampleOf[static_cast<std::size_t>(at)] = static_cast<int>(i);
     }
     pcl::EuclideanClusterExtraction<pcl::PointXYZ> extraction;
@@ -147,10 +147,10 @@ std::vector<Cluster> euclideanClusters(const cv::Mat1w& depth_mm, const Intrinsi
     for (Cluster& c : out) c.mask = cv::Mat1b::zeros(depth_mm.size());
     for (std::size_t c = 0; c < found.size(); ++c)
         for (const auto i : found[c].indices) {
-            const pcl::PointXYZ& q = s[static_cast<std::size_t>(i)].p;
+            const glm::vec3& q = s[static_cast<std::size_t>(i)].p;
             for (int a = 0; a < 3; ++a) {
-                out[c].lo[a] = std::min(out[c].lo[a], q.data[a]);
-                out[c].hi[a] = std::max(out[c].hi[a], q.data[a]);
+                out[c].lo[a] = std::min(out[c].lo[a], q[a]);
+                out[c].hi[a] = std::max(out[c].hi[a], q[a]);
             }
         }
     const float tolerance_mm = tolerance_m * kMillimetresPerMetre;

@@ -42,7 +42,7 @@ constexpr float kMaxBearingDownLean = 0.1f;
 pcl::PointCloud<pcl::PointXYZ>::Ptr cloudOf(const std::vector<Sample>& s) {
     auto cloud = pcl::make_shared<pcl::PointCloud<pcl::PointXYZ>>();
     cloud->reserve(s.size());
-    for (const Sample& e : s) cloud->push_back(e.p);
+    for (const Sample& e : s) cloud->push_back({e.p.x, e.p.y, e.p.z});
     return cloud;
 }
 
@@ -77,7 +77,7 @@ std::vector<Sample> samples(const cv::Mat1w& depth_mm, const cv::Mat1b& mask, co
             if (!mask(y, x)) continue;
             const glm::vec3 v = k.backProject(static_cast<float>(x), static_cast<float>(y),
                                               depth_mm(y, x) / kMillimetresPerMetre);
-            out.push_back({{x, y}, {v.x, v.y, v.z}});
+            out.push_back({{x, y}, v});
         }
     return out;
 }

@@ -2,8 +2,6 @@
 // The scene's readings and its large planes (floor, walls, table tops), for finding a plant
 // among them (plant_finding.cpp): the planes are fitted with PCL's RANSAC on a sample of the
 // readings and removed; those a pot can stand on are told from walls.
-#include <pcl/point_types.h>
-
 #include <array>
 #include <glm/vec3.hpp>
 #include <opencv2/core.hpp>
@@ -16,7 +14,7 @@ namespace meadow::capture::segmentation::scene {
 // One reading of a sampling grid: its pixel and its camera-space point (metres).
 struct Sample {
     cv::Point px;
-    pcl::PointXYZ p;
+    glm::vec3 p;
 };
 
 // The readings of `mask` on every `stride`-th pixel of every `stride`-th row.
