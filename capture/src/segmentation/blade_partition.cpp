@@ -325,12 +325,8 @@ std::vector<BladeContour> partitionCluster(BladeCluster& cluster, const cv::Mat1
                                            StageReport& report) {
     const Cuts cuts = persistentCuts(cluster, params, report);
     std::vector<BladeContour> pieces = contourPieces(cluster, cuts, params);
-    // The cluster's own pixels, in its bounding box.
-    const cv::Rect box = cv::boundingRect(cluster.contour_px);
-    cv::Mat1b region(box.size(), std::uint8_t{0});
-    cv::drawContours(region, std::vector<std::vector<cv::Point>>{cluster.contour_px}, 0, 255,
-                     cv::FILLED, cv::LINE_8, cv::noArray(), 0, -box.tl());
-    region &= mask(box);
+    cv::Rect box;
+    const cv::Mat1b region = clusterRegion(cluster, mask, box);
     // Masks. Every cluster pixel goes to the blade whose contour piece is nearest: a Voronoi
     // split of the cluster by contour pieces (cv::distanceTransform with per-pixel labels). That
     // hands the shared base, below the forks, to the two outermost blades, whose pieces enclose

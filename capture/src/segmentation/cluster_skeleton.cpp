@@ -4,6 +4,8 @@
 #include <opencv2/imgproc.hpp>
 #include <opencv2/ximgproc.hpp>
 
+#include "segmentation/stages.h"
+
 namespace meadow::capture::segmentation {
 
 std::optional<ClusterSkeleton> clusterSkeleton(const BladeCluster& cluster, const cv::Mat1b& mask,
@@ -11,11 +13,7 @@ std::optional<ClusterSkeleton> clusterSkeleton(const BladeCluster& cluster, cons
                                                const SegmenterParams& params, cv::Point2f foot_px) {
     if (cluster.contour_px.empty()) return std::nullopt;
     ClusterSkeleton c;
-    c.box = cv::boundingRect(cluster.contour_px);
-    c.region = cv::Mat1b(c.box.size(), std::uint8_t{0});
-    cv::drawContours(c.region, std::vector<std::vector<cv::Point>>{cluster.contour_px}, 0, 255,
-                     cv::FILLED, cv::LINE_8, cv::noArray(), 0, -c.box.tl());
-    c.region &= mask(c.box);
+    c.region = clusterRegion(cluster, mask, c.box);
     cv::ximgproc::thinning(c.region, c.skeleton, cv::ximgproc::THINNING_ZHANGSUEN);
     cv::findNonZero(c.skeleton, c.onSkeleton);
     if (c.onSkeleton.empty()) return std::nullopt;

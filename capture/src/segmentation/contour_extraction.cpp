@@ -102,4 +102,13 @@ std::vector<BladeCluster> extractClusters(const cv::Mat1b& mask, const cv::Rect&
     return clusters;
 }
 
+cv::Mat1b clusterRegion(const BladeCluster& cluster, const cv::Mat1b& mask, cv::Rect& box) {
+    box = cv::boundingRect(cluster.contour_px);
+    cv::Mat1b region(box.size(), std::uint8_t{0});
+    cv::drawContours(region, std::vector<std::vector<cv::Point>>{cluster.contour_px}, 0, 255,
+                     cv::FILLED, cv::LINE_8, cv::noArray(), 0, -box.tl());
+    region &= mask(box);
+    return region;
+}
+
 }  // namespace meadow::capture::segmentation

@@ -190,6 +190,9 @@ struct SensedExtent {
 std::vector<BladeCluster> extractClusters(const cv::Mat1b& mask, const cv::Rect& region,
                                           const SensedExtent& sensed, const SegmenterParams& params,
                                           StageReport& report);
+// The cluster's own pixels: inside its contour and on `mask` (frame-sized), over the contour's
+// bounding box, which `box` receives; the region the partitions cut.
+cv::Mat1b clusterRegion(const BladeCluster& cluster, const cv::Mat1b& mask, cv::Rect& box);
 
 // blade_partition.cpp: persistent minima of the smoothed distance cut each cluster's contour
 // into blades ordered base A -> tip -> base B, each with its mask. `depth_mm`: the frame's
