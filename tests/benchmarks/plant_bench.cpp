@@ -114,8 +114,10 @@ modeling::ArchetypeLibrary captureEachFrame(const fs::path& recording, int frame
     return result.library;
 }
 
-// The row of the truth's own leaves, each modelled as capture models a blade.
+// The rows of the truth's own leaves, each modelled as capture models a blade: carried to where
+// its true centre line starts, and as far down as the sensor read it.
 constexpr const char* kTruthLeaves = "truth leaves (bound)";
+constexpr const char* kTruthLeavesAsSeen = "truth leaves as seen (bound)";
 
 // The baseline's depth band: the plant's distance from the camera +- kBaselineBand_m, as a user
 // would set it.
@@ -260,10 +262,13 @@ int run(int argc, char** argv) {
         });
     }
     const auto findingName = [](const Method& m) { return m.name(); };
-    // The last kind of row per sensor: the truth's own leaves, modelled (the partition's bound).
-    const std::size_t kinds = findings.size() + (defaultOnly ? 0 : 1);
+    // The last two kinds of row per sensor: the truth's own leaves, modelled (the partition's
+    // bounds).
+    const std::size_t kinds = findings.size() + (defaultOnly ? 0 : 2);
     const auto kindName = [&](std::size_t f) {
-        return f < findings.size() ? findingName(findings[f]) : std::string(kTruthLeaves);
+        return f < findings.size()    ? findingName(findings[f])
+               : f == findings.size() ? std::string(kTruthLeaves)
+                                      : std::string(kTruthLeavesAsSeen);
     };
     for (const std::string& sensor : haveScans ? sensors : std::vector<std::string>{}) {
         std::vector<Row> totals(kinds);
@@ -284,8 +289,11 @@ int run(int argc, char** argv) {
             for (std::size_t f = 0; f < kinds; ++f) {
                 FrameTimes times;
                 const modeling::ArchetypeLibrary library =
-                    f < findings.size() ? captureEachFrame(o.out, views, times, true, findings[f])
-                                        : modelTruthLeaves(o.out, scoring, {});
+                    f < findings.size()
+                        ? captureEachFrame(o.out, views, times, true, findings[f])
+                        : modelTruthLeaves(o.out, scoring, {},
+                                           f == findings.size() ? TruthBase::WhereItStarts
+                                                                : TruthBase::LowestSeen);
                 Row row = score(library, scoring, o.out, truth.options.distance_m);
                 row.times = times;
                 if (library.stem)
@@ -357,8 +365,13 @@ int run(int argc, char** argv) {
        << kTruthLeaves
        << "\" bound what any partition could reach on these views: each leaf cut as the truth "
           "cuts it (its own pixels the sensor read, its base and tip where its true centre "
-          "line starts and ends) and modelled as capture models a blade; what they miss, the "
-          "sensor did not show well enough or the model cannot hold. The tuft rows score the "
+          "line starts and ends) and modelled as capture models a blade, carried down to where "
+          "its true centre line starts as a tuft's blade is carried to the tuft's base; what "
+          "they miss, the sensor did not show well enough or the model cannot hold. The rows \""
+       << kTruthLeavesAsSeen
+       << "\" model the same leaves only as far down as the sensor read them, as capture models "
+          "a leaf cut from a stem: the length a partition reaches without guessing where a "
+          "hidden base is. The tuft rows score the "
           "synthetic presets' first fused group the same way. Times, on one core, median over "
           "the frames: all of capture from depth to archetypes; finding the plant (depth band, "
           "plane removal, plant finding); the partition.\n\n"

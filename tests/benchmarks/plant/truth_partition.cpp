@@ -68,7 +68,10 @@ bool addLeaf(const synth::TruthLeaf& leaf, const cv::Mat1b& pixels, const captur
 
 modeling::ArchetypeLibrary modelTruthLeaves(const std::filesystem::path& recording,
                                             const synth::ScoringTruth& truth,
-                                            const modeling::CaptureOptions& options) {
+                                            const modeling::CaptureOptions& options,
+                                            TruthBase base) {
+    modeling::BladeFitParams fit = options.fit;
+    if (base == TruthBase::LowestSeen) fit.root.enabled = false;
     std::map<int, const synth::TruthView*> views;
     for (const synth::TruthView& v : truth.views) views[v.frame] = &v;
     modeling::ArchetypeLibrary library;
@@ -96,7 +99,7 @@ modeling::ArchetypeLibrary modelTruthLeaves(const std::filesystem::path& recordi
                 const modeling::Source src{
                     recording.string(), frame->index, seg.blades[i].id, {}, {}};
                 library.archetypes.push_back(
-                    modeling::fitSegmentedBlade(seg, i, *frame, options.fit, src).archetype);
+                    modeling::fitSegmentedBlade(seg, i, *frame, fit, src).archetype);
             } catch (const modeling::ModelingError&) {
             }
         }
