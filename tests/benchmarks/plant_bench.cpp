@@ -51,7 +51,7 @@ struct Row {
     std::string set, sensor, what, finding;
     int views = 0, leaves = 0, matched = 0;
     std::array<double, 7> falseBlades{};  // summed over views, by FalseBladeOn
-    std::vector<float> lengthError, widthError;
+    std::vector<float> lengthError, widthError, baseMissed, tipMissed;
     std::vector<float> stemError;  // |measured - true| / true stem height, one per plant
     double countError = 0.0, baselineCountError = 0.0;  // summed over views
     FrameTimes times;
@@ -60,6 +60,8 @@ struct Row {
         for (std::size_t k = 0; k < falseBlades.size(); ++k) falseBlades[k] += o.falseBlades[k];
         lengthError.insert(lengthError.end(), o.lengthError.begin(), o.lengthError.end());
         widthError.insert(widthError.end(), o.widthError.begin(), o.widthError.end());
+        baseMissed.insert(baseMissed.end(), o.baseMissed.begin(), o.baseMissed.end());
+        tipMissed.insert(tipMissed.end(), o.tipMissed.begin(), o.tipMissed.end());
         stemError.insert(stemError.end(), o.stemError.begin(), o.stemError.end());
         countError += o.countError, baselineCountError += o.baselineCountError;
         times.add(o.times);
@@ -135,6 +137,8 @@ Row score(const modeling::ArchetypeLibrary& library, const synth::ScoringTruth& 
             row.falseBlades[k] += vs.falseBlades[k];
         row.lengthError.insert(row.lengthError.end(), vs.lengthError.begin(), vs.lengthError.end());
         row.widthError.insert(row.widthError.end(), vs.widthError.begin(), vs.widthError.end());
+        row.baseMissed.insert(row.baseMissed.end(), vs.baseMissed.begin(), vs.baseMissed.end());
+        row.tipMissed.insert(row.tipMissed.end(), vs.tipMissed.begin(), vs.tipMissed.end());
         row.countError += std::abs(vs.archetypes - vs.leaves);
         char name[32];
         std::snprintf(name, sizeof name, "%06d.png", vs.frame);
@@ -165,10 +169,14 @@ std::string cells(const Row& r) {
                   " " + fixed(r.falseBlades[k] / views, 2);
     out << (by.empty() ? "-" : by) << " | "
         << (r.lengthError.empty() ? "-" : fixed(100.0 * median(r.lengthError), 0) + " %") << " | "
-        << (r.widthError.empty() ? "-" : fixed(100.0 * median(r.widthError), 0) + " %") << " | "
-        << (r.stemError.empty() ? "-" : fixed(100.0 * median(r.stemError), 0) + " %") << " | "
-        << fixed(r.countError / views, 1) << " | " << fixed(r.baselineCountError / views, 1)
-        << " | " << (t.capture_ms.empty() ? "-" : fixed(median(t.capture_ms), 0)) << " | "
+        << (r.baseMissed.empty() ? "-"
+                                 : fixed(100.0 * median(r.baseMissed), 0) + " % / " +
+                                       fixed(100.0 * median(r.tipMissed), 0) + " %")
+        << " | " << (r.widthError.empty() ? "-" : fixed(100.0 * median(r.widthError), 0) + " %")
+        << " | " << (r.stemError.empty() ? "-" : fixed(100.0 * median(r.stemError), 0) + " %")
+        << " | " << fixed(r.countError / views, 1) << " | "
+        << fixed(r.baselineCountError / views, 1) << " | "
+        << (t.capture_ms.empty() ? "-" : fixed(median(t.capture_ms), 0)) << " | "
         << (t.finding_ms.empty() ? "-" : fixed(median(t.finding_ms), 0)) << " | "
         << (t.partition_ms.empty() ? "-" : fixed(median(t.partition_ms), 1));
     return out.str();
@@ -182,6 +190,8 @@ std::string csvRow(const Row& r) {
         << r.leaves << ',' << fixed(r.leaves ? double(r.matched) / r.leaves : 0.0, 3);
     for (double f : r.falseBlades) out << ',' << fixed(f / views, 3);
     out << ',' << orBlank(r.lengthError, median(r.lengthError), 3) << ','
+        << orBlank(r.baseMissed, median(r.baseMissed), 3) << ','
+        << orBlank(r.tipMissed, median(r.tipMissed), 3) << ','
         << orBlank(r.widthError, median(r.widthError), 3) << ','
         << orBlank(r.stemError, median(r.stemError), 3) << ',' << fixed(r.countError / views, 2)
         << ',' << fixed(r.baselineCountError / views, 2) << ','
@@ -371,15 +381,18 @@ int run(int argc, char** argv) {
        << kTruthLeavesAsSeen
        << "\" model the same leaves only as far down as the sensor read them, as capture models "
           "a leaf cut from a stem: the length a partition reaches without guessing where a "
-          "hidden base is. The tuft rows score the "
+          "hidden base is. Missed at base / tip: for each matched leaf, the share of its true "
+          "centre line below the archetype's lower end and beyond its upper end (each end's "
+          "nearest point on the line). The tuft rows score the "
           "synthetic presets' first fused group the same way. Times, on one core, median over "
           "the frames: all of capture from depth to archetypes; finding the plant (depth band, "
           "plane removal, plant finding); the partition.\n\n"
           "| Set | Sensor | Capture | Plant | Views | Leaves | Recall | False / view | "
-          "False on | Length error (median) | Width error (median) | Stem height error (median) | "
+          "False on | Length error (median) | Missed at base / tip (median) | Width error (median) "
+          "| Stem height error (median) | "
           "Count error | Baseline count error | Capture ms / frame | Finding ms / frame | "
           "Partition ms / frame |\n"
-          "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+          "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
     for (const Row& r : rows)
         md << "| " << r.set << " | " << r.sensor << " | " << r.finding << " | "
            << (r.what == "all" ? "**all**" : r.what) << " | " << cells(r) << " |\n";
@@ -388,7 +401,8 @@ int run(int argc, char** argv) {
     csv << "set,sensor,capture,plant,views,leaves,recall";
     for (std::size_t k = 0; k < 7; ++k)
         csv << ",false_on_" << synth::kFalseBladeOnNames.name(static_cast<synth::FalseBladeOn>(k));
-    csv << ",length_error_median,width_error_median,stem_height_error_median,count_error,baseline_"
+    csv << ",length_error_median,base_missed_median,tip_missed_median,width_error_median,stem_"
+           "height_error_median,count_error,baseline_"
            "count_error,capture_ms,finding_ms,partition_ms\n";
     for (const Row& r : rows) csv << csvRow(r) << '\n';
     writeText(out / "plant_benchmark.csv", csv.str());

@@ -46,6 +46,21 @@ float distanceToPolyline(glm::vec3 p, const std::vector<glm::vec3>& line) {
     return line.size() == 1 ? glm::distance(p, line.front()) : best;
 }
 
+// The share of `line`'s length from its start to its point nearest `p`.
+float arcShareNearest(glm::vec3 p, const std::vector<glm::vec3>& line) {
+    if (line.size() < 2) return 0.f;
+    float best = std::numeric_limits<float>::max(), along = 0.f, bestAlong = 0.f;
+    for (std::size_t i = 1; i < line.size(); ++i) {
+        const glm::vec3 a = line[i - 1], ab = line[i] - a;
+        const float l2 = glm::dot(ab, ab), l = std::sqrt(l2);
+        const float t = l2 > 0.f ? std::clamp(glm::dot(p - a, ab) / l2, 0.f, 1.f) : 0.f;
+        if (const float d = glm::distance(p, a + t * ab); d < best)
+            best = d, bestAlong = along + t * l;
+        along += l;
+    }
+    return along > 0.f ? bestAlong / along : 0.f;
+}
+
 float polylineLength(const std::vector<glm::vec3>& line) {
     float l = 0.f;
     for (std::size_t i = 1; i < line.size(); ++i) l += glm::distance(line[i - 1], line[i]);
@@ -210,6 +225,17 @@ double LibraryScore::medianWidthError() const {
         all.insert(all.end(), v.widthError.begin(), v.widthError.end());
     return median(std::move(all));
 }
+double LibraryScore::medianBaseMissed() const {
+    std::vector<float> all;
+    for (const ViewScore& v : views)
+        all.insert(all.end(), v.baseMissed.begin(), v.baseMissed.end());
+    return median(std::move(all));
+}
+double LibraryScore::medianTipMissed() const {
+    std::vector<float> all;
+    for (const ViewScore& v : views) all.insert(all.end(), v.tipMissed.begin(), v.tipMissed.end());
+    return median(std::move(all));
+}
 double LibraryScore::meanCountError() const {
     double sum = 0;
     for (const ViewScore& v : views) sum += std::abs(v.archetypes - v.leaves);
@@ -257,6 +283,11 @@ LibraryScore scoreLibrary(const modeling::ArchetypeLibrary& library, const Scori
             if (leaf.maxWidth_m > 0.f)
                 vs.widthError.push_back(std::abs(a.width.maxWidth_m() - leaf.maxWidth_m) /
                                         leaf.maxWidth_m);
+            const std::vector<glm::vec3>& spine = spines[p.archetype];
+            const float one = arcShareNearest(spine.front(), leaf.line);
+            const float other = arcShareNearest(spine.back(), leaf.line);
+            vs.baseMissed.push_back(std::min(one, other));
+            vs.tipMissed.push_back(1.f - std::max(one, other));
         }
         for (std::size_t l = 0; l < view.leaves.size(); ++l)
             if (view.leaves[l].visiblePixels >= rule.minVisiblePixels) {

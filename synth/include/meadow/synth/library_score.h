@@ -7,7 +7,10 @@
 //   an archetype matches a leaf when its spine stays within max(10 mm, 5 % of the leaf's
 //   length) of the leaf's true centre line over at least 80 % of the shorter of the two;
 //
-// one archetype to one leaf, best coverage first. Leaves with at least 300 visible pixels count
+// one archetype to one leaf, best coverage first. Where a matched archetype's ends fall on the
+// leaf's centre line (each end's nearest point) tells where it comes out short: the share of the
+// leaf below its lower end (missed at the base) and beyond its upper end (missed at the tip).
+// Leaves with at least 300 visible pixels count
 // for recall. An archetype that matches no leaf is a false blade, named by what most of its spine
 // lies on in the view's label image (the stem, the pot, the floor, the wall, clutter, another
 // blade or leaf, or nothing).
@@ -83,6 +86,8 @@ struct ViewScore {
     std::array<int, 7> falseBlades{};  // by FalseBladeOn
     std::vector<float> lengthError;    // |archetype - leaf| / leaf, per matched leaf
     std::vector<float> widthError;     // |widest archetype - widest leaf| / widest leaf
+    std::vector<float> baseMissed;     // share of the matched leaf's line below the archetype
+    std::vector<float> tipMissed;      // share of it beyond the archetype's upper end
     [[nodiscard]] int falseCount() const;
 };
 
@@ -96,6 +101,8 @@ struct LibraryScore {
     [[nodiscard]] double falsePerView(FalseBladeOn on) const;
     [[nodiscard]] double medianLengthError() const;  // NaN without matches
     [[nodiscard]] double medianWidthError() const;
+    [[nodiscard]] double medianBaseMissed() const;  // NaN without matches
+    [[nodiscard]] double medianTipMissed() const;
     [[nodiscard]] double meanCountError() const;  // |archetypes in a view - leaves| per view
 };
 
