@@ -602,6 +602,24 @@ TEST(SegmenterOverlay, DrawsTheStemWhite) {
     }
 }
 
+// The stem's share is painted brown where it lies, over the slate of the mask no blade took.
+TEST(SegmenterOverlay, PaintsTheStemsShareBrown) {
+    DepthFrame frame;
+    frame.depth_mm = cv::Mat1w(120, 160, std::uint16_t{1000});
+    Segmentation s;
+    s.clusterMask = cv::Mat1b::zeros(frame.depth_mm.size());
+    s.clusterMask(cv::Rect(70, 20, 20, 90)).setTo(255);
+    s.clusters.emplace_back();
+    s.clusters[0].centre_px = s.clusters[0].basePoint_px = {10.f, 10.f};
+    s.clusters[0].stemShare = cv::Mat1b::zeros(40, 20);
+    s.clusters[0].stemShare(cv::Rect(5, 0, 10, 40)).setTo(255);
+    s.clusters[0].stemShareOrigin_px = {70, 70};
+    const cv::Mat3b image = renderDebugOverlay(frame, s);
+    EXPECT_EQ(image(90, 80), cv::Vec3b(40, 90, 130)) << "in the stem's share";
+    EXPECT_EQ(image(90, 72), cv::Vec3b(90, 60, 60)) << "in the mask beside it: slate";
+    EXPECT_EQ(image(40, 80), cv::Vec3b(90, 60, 60)) << "above it: slate";
+}
+
 // What plant finding left out is outlined in orange.
 TEST(SegmenterOverlay, OutlinesTheObjectsLeftOut) {
     DepthFrame frame;

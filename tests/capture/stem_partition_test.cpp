@@ -69,6 +69,24 @@ TEST(StemPartition, TheStemRunsFromItsFootToTheHighestNode) {
     EXPECT_LE(cv::norm(stem.back() - cv::Point(100, 110)), 6.0) << stem.back();
 }
 
+// What the stem took of the region: the stem below the lowest leaf, none of a leaf's far part.
+TEST(StemPartition, TheStemsShareHoldsTheStemAndNoLeaf) {
+    const Segmentation seg = segmentByStem(plantMask());
+    ASSERT_EQ(seg.clusters.size(), 1u) << seg.summary();
+    const BladeCluster& c = seg.clusters[0];
+    ASSERT_FALSE(c.stemShare.empty());
+    const auto inShare = [&](cv::Point p) {
+        const cv::Point at = p - c.stemShareOrigin_px;
+        return cv::Rect({}, c.stemShare.size()).contains(at) && c.stemShare(at) != 0;
+    };
+    for (const cv::Point p : {cv::Point(100, 185), cv::Point(100, 170), cv::Point(98, 160)})
+        EXPECT_TRUE(inShare(p)) << p;
+    for (const DrawnLeaf& leaf : kLeaves) {
+        const cv::Point farPart = leaf.from + (leaf.tip - leaf.from) * 3 / 4;
+        EXPECT_FALSE(inShare(farPart)) << farPart;
+    }
+}
+
 TEST(StemPartition, SpursOfTheEdgeAreNoLeaves) {
     cv::Mat1b mask = plantMask();
     // A bump on the stem's side, 6 px out: its skeleton branch is a spur.

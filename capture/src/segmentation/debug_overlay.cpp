@@ -22,6 +22,7 @@ constexpr double kLabelScale = 0.4;
 constexpr int kTextHeight_px = 12;  // of kLabelScale text, with its outline
 
 const cv::Scalar kLeftOutInk(0, 140, 255);  // orange
+const cv::Scalar kStemInk(40, 90, 130);     // brown
 
 // Text outlined in black, to read on any colour.
 void drawOutlinedText(cv::Mat3b& image, const std::string& text, cv::Point at, cv::Scalar ink) {
@@ -57,6 +58,15 @@ cv::Mat3b renderDebugOverlay(const DepthFrame& frame, const Segmentation& s) {
     cv::cvtColor(grey, out, cv::COLOR_GRAY2BGR);
     if (!s.clusterMask.empty() && s.clusterMask.size() == out.size())
         out.setTo(cv::Scalar(90, 60, 60), s.clusterMask);  // mask not given to any blade: slate
+    // The stem's share (PartitionMethod::StemGraph) in brown: a leaf short at its base lost it
+    // there when its base lies in it.
+    for (const BladeCluster& c : s.clusters) {
+        if (c.stemShare.empty()) continue;
+        const cv::Rect box =
+            cv::Rect(c.stemShareOrigin_px, c.stemShare.size()) & cv::Rect(0, 0, out.cols, out.rows);
+        if (box.empty()) continue;
+        out(box).setTo(kStemInk, c.stemShare(box - c.stemShareOrigin_px));
+    }
     // What plant finding left out, and why: a user whose plant lacks a part sees where it went.
     for (const LeftOutObject& o : s.leftOut) {
         if (o.outline_px.empty()) continue;

@@ -144,11 +144,10 @@ SkeletonOwners ownersOnSkeleton(const SkeletonGraph& graph, const Strands& stran
 }
 
 // Every region pixel goes to the owners of its nearest skeleton pixel: one mask per label
-// (index 0, the stem's, stays empty; its pixels are counted in `stemPixels`).
+// (index 0, the stem's).
 std::vector<cv::Mat1b> sharesOfRegion(const cv::Mat1b& region, const cv::Mat1b& skeleton,
                                       const std::vector<cv::Point>& onSkeleton,
-                                      const SkeletonOwners& owners, std::size_t leaves,
-                                      int& stemPixels) {
+                                      const SkeletonOwners& owners, std::size_t leaves) {
     cv::Mat1f distance;
     cv::Mat1i nearest;
     cv::distanceTransform(~skeleton, distance, nearest, cv::DIST_L2, cv::DIST_MASK_5,
@@ -157,14 +156,13 @@ std::vector<cv::Mat1b> sharesOfRegion(const cv::Mat1b& region, const cv::Mat1b& 
     for (const cv::Point& p : onSkeleton) sourceAt[static_cast<std::size_t>(nearest(p))] = p;
     std::vector<cv::Mat1b> masks(leaves + 1);
     for (auto& m : masks) m = cv::Mat1b::zeros(region.size());
-    stemPixels = 0;
     for (int y = 0; y < region.rows; ++y)
         for (int x = 0; x < region.cols; ++x) {
             if (!region(y, x)) continue;
             const cv::Point s = sourceAt[static_cast<std::size_t>(nearest(y, x))];
             for (const int label : {owners.first(s), owners.second(s)})
                 if (label > kStem) masks[static_cast<std::size_t>(label)](y, x) = 255;
-            stemPixels += owners.first(s) == kStem;
+            if (owners.first(s) == kStem) masks[kStem](y, x) = 255;
         }
     return masks;
 }
@@ -221,9 +219,13 @@ std::vector<BladeContour> partitionByStem(BladeCluster& cluster, const cv::Mat1b
 
     const SkeletonOwners owners =
         ownersOnSkeleton(graph, strands, isStem, labelOfStrand, onSkeleton, box.size());
-    int stemPixels = 0;
     const std::vector<cv::Mat1b> leafMasks =
-        sharesOfRegion(region, skeleton, onSkeleton, owners, leaves.size(), stemPixels);
+        sharesOfRegion(region, skeleton, onSkeleton, owners, leaves.size());
+    const int stemPixels = cv::countNonZero(leafMasks[kStem]);
+    if (!stem.empty()) {
+        cluster.stemShare = leafMasks[kStem];
+        cluster.stemShareOrigin_px = box.tl();
+    }
 
     std::vector<BladeContour> blades;
     for (std::size_t i = 0; i < leaves.size(); ++i) {

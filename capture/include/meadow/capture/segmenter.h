@@ -318,6 +318,10 @@ struct BladeCluster {
     // PartitionMethod::StemGraph: the stem's skeleton, from where the plant stands to the
     // highest point a leaf leaves it at, in image pixels; empty when no leaves leave a stem.
     std::vector<cv::Point> stemLine_px;
+    // ...and the region's pixels the stem took (those nearest its skeleton), at stemShareOrigin_px
+    // in the frame: where a leaf that comes out short at its base lost it. Empty otherwise.
+    cv::Mat1b stemShare;
+    cv::Point stemShareOrigin_px;
     int area_px = 0;
     std::vector<BladeFlag> flags;
     std::vector<std::string> reasons;
