@@ -23,8 +23,9 @@ using detail::sampleAt;
 // the "base above the blade" test.
 constexpr float kBasePartFraction = 0.08f;
 // The segmented contour starts at the fork, where its two sides follow the crotch between
-// neighbouring blades: the matched widths over the lowest part of the chain overstate the blade's
-// width, by up to several times. The widths of the part just above it (kWidthReferenceFrom to
+// neighbouring blades (or, for a leaf cut from a stem, the stem and the leaves beside it): the
+// matched widths over the lowest part of the chain overstate the blade's width, by up to
+// several times. The widths of the part just above it (kWidthReferenceFrom to
 // kWidthReferenceTo of the chain, median) bound those of the lowest part (below
 // kWidthReferenceFrom), and the added piece carries that median. Every blade-type preset's true
 // width at its base is at most its width there.
@@ -38,6 +39,30 @@ float medianOf(std::vector<float> v) {
     const auto mid = v.begin() + static_cast<std::ptrdiff_t>(v.size() / 2);
     std::nth_element(v.begin(), mid, v.end());
     return *mid;
+}
+
+// Bounds the widths of the skeleton's lowest part (below kWidthReferenceFrom) by the median of
+// those just above it (kWidthReferenceFrom to kWidthReferenceTo), in pixels and metres; returns
+// those medians (0 where a width list does not run along the points).
+struct FlareReference {
+    float px = 0.f, m = 0.f;
+};
+FlareReference boundBaseFlare(Skeleton& s) {
+    const int n = static_cast<int>(s.points_m.size());
+    const auto index = [n](float f) {
+        return std::clamp(static_cast<int>(std::lround(f * static_cast<float>(n - 1))), 0, n - 1);
+    };
+    const int from = index(kWidthReferenceFrom), to = std::max(from, index(kWidthReferenceTo));
+    const auto bound = [&](std::vector<float>& w) {
+        if (w.size() != s.points_m.size() || n == 0) return 0.f;
+        const float reference = medianOf(std::vector<float>(w.begin() + from, w.begin() + to + 1));
+        for (int i = 0; i < from; ++i) w[i] = std::min(w[i], reference);
+        return reference;
+    };
+    FlareReference r;
+    r.px = bound(s.width_px);
+    r.m = bound(s.width_m);
+    return r;
 }
 
 // The cluster whose bladeIds hold `bladeId`, or null.
@@ -142,17 +167,8 @@ void rootSkeleton(Skeleton& s, const ClusterBase& base, const RootParams& params
     if (extension_m <= 0.f) return;
 
     // Widths of the fork's flare bounded, and carried down the added piece (kWidthReferenceFrom).
-    const auto index = [n](float f) {
-        return std::clamp(static_cast<int>(std::lround(f * static_cast<float>(n - 1))), 0, n - 1);
-    };
-    const int from = index(kWidthReferenceFrom), to = std::max(from, index(kWidthReferenceTo));
-    const auto bound = [&](std::vector<float>& w) {
-        if (w.size() != s.points_m.size()) return 0.f;
-        const float reference = medianOf(std::vector<float>(w.begin() + from, w.begin() + to + 1));
-        for (int i = 0; i < from; ++i) w[i] = std::min(w[i], reference);
-        return reference;
-    };
-    const float referencePx = bound(s.width_px), referenceM = bound(s.width_m);
+    const FlareReference flare = boundBaseFlare(s);
+    const float referencePx = flare.px, referenceM = flare.m;
     const auto prepend = [](auto& v, auto value) { v.insert(v.begin(), value); };
     std::vector<glm::vec3> points = s.points_m;
     prepend(points, base.base_m);
@@ -224,7 +240,9 @@ Skeleton segmentedBladeSkeleton(const capture::Segmentation& segmentation, std::
         extendSkeletonTip(skeleton, tip);
     }
     // A leaf cut where it leaves a stem (PartitionMethod::StemGraph) starts at its own base: its
-    // length runs along it, not down the stem to the plant's foot.
+    // length runs along it, not down the stem to the plant's foot. Its outline starts where it
+    // meets the stem and its neighbours, so its lowest widths flare as a fork's do.
+    if (leavesAStem(segmentation, blade.id)) boundBaseFlare(skeleton);
     if (params.root.enabled && !leavesAStem(segmentation, blade.id)) {
         if (const auto base = clusterBase(segmentation, blade.id, frame, params.root)) {
             rootSkeleton(skeleton, *base, params.root);

@@ -4,8 +4,11 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <glm/geometric.hpp>
+#include <opencv2/imgproc.hpp>
 #include <optional>
+#include <vector>
 
 #include "meadow/modeling/blade_fit.h"
 #include "modeling/blade_fit_synthetic_test.h"
@@ -85,6 +88,54 @@ TEST(BladeRoot, RefusesABaseAboveTheBladesLowerEnd) {
     rootSkeleton(c.skeleton, baseAt(c.skeleton.points_m[40]));  // up the blade
     EXPECT_TRUE(c.skeleton.baseNotRooted);
     EXPECT_EQ(c.skeleton.points_m, before);
+}
+
+// A leaf cut from a stem (a cluster with a stem line) whose outline, where it meets the stem and
+// its neighbours, flares to 31 px across its lowest 16 px, on a leaf 9 px wide: the leaf is not
+// rooted (it starts at its own base), and its lowest widths are bounded as a fork's are, by the
+// widths just above them.
+TEST(BladeRoot, ALeafCutFromAStemHasTheFlareWhereItMeetsTheStemBounded) {
+    const capture::Intrinsics k = fineIntrinsics();
+    cv::Mat1b drawn = cv::Mat1b::zeros(k.height_px, k.width_px);
+    const cv::Point base(600, 700), tip(600, 400);
+    cv::line(drawn, base, tip, 255, 9);
+    cv::rectangle(drawn, cv::Rect(base.x - 15, base.y - 16, 31, 16), 255, cv::FILLED);
+    std::vector<std::vector<cv::Point>> outlines;
+    cv::findContours(drawn, outlines, cv::RETR_EXTERNAL, cv::CHAIN_APPROX_NONE);
+    ASSERT_EQ(outlines.size(), 1u);
+    std::vector<cv::Point> outline = outlines[0];
+    const auto nearest = [&](cv::Point p) {
+        return static_cast<int>(std::min_element(outline.begin(), outline.end(),
+                                                 [&](cv::Point a, cv::Point b) {
+                                                     return cv::norm(a - p) < cv::norm(b - p);
+                                                 }) -
+                                outline.begin());
+    };
+    std::rotate(outline.begin(), outline.begin() + nearest(base), outline.end());
+    capture::Segmentation seg;
+    seg.clusterMask = drawn;
+    capture::BladeContour leaf;
+    leaf.id = 1;
+    leaf.contour_px = outline;
+    leaf.tipIndex = nearest(tip);
+    leaf.mask = drawn;
+    seg.blades.push_back(leaf);
+    capture::BladeCluster cluster;
+    cluster.bladeIds = {1};
+    cluster.basePoint_px = cv::Point2f(base);
+    cluster.stemLine_px = {{base.x, base.y + 40}, base};
+    seg.clusters.push_back(cluster);
+    capture::DepthFrame frame;
+    frame.intrinsics = k;
+    frame.depth_mm = cv::Mat1w(drawn.size(), std::uint16_t{0});
+    frame.depth_mm.setTo(500, drawn);
+    const Skeleton s = segmentedBladeSkeleton(seg, 0, frame, BladeFitParams{});
+    EXPECT_EQ(s.baseExtension_m, 0.f) << "starts at its own base";
+    EXPECT_FALSE(s.baseNotRooted);
+    ASSERT_FALSE(s.width_px.empty());
+    const float widest = *std::max_element(s.width_px.begin(), s.width_px.end());
+    EXPECT_LT(widest, 14.f) << "the leaf is 9 px wide; the flare 31 px";
+    EXPECT_GT(widest, 7.f);
 }
 
 // A cluster mask of rows 100..200 x columns 50..70 at 0.5 m, its base point where the segmenter
