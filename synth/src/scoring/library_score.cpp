@@ -213,29 +213,16 @@ double LibraryScore::falsePerView(FalseBladeOn on) const {
     for (const ViewScore& v : views) n += v.falseBlades[static_cast<std::size_t>(on)];
     return views.empty() ? 0.0 : n / static_cast<double>(views.size());
 }
-double LibraryScore::medianLengthError() const {
+double LibraryScore::medianOver(std::vector<float> ViewScore::*perMatch) const {
     std::vector<float> all;
     for (const ViewScore& v : views)
-        all.insert(all.end(), v.lengthError.begin(), v.lengthError.end());
+        all.insert(all.end(), (v.*perMatch).begin(), (v.*perMatch).end());
     return median(std::move(all));
 }
-double LibraryScore::medianWidthError() const {
-    std::vector<float> all;
-    for (const ViewScore& v : views)
-        all.insert(all.end(), v.widthError.begin(), v.widthError.end());
-    return median(std::move(all));
-}
-double LibraryScore::medianBaseMissed() const {
-    std::vector<float> all;
-    for (const ViewScore& v : views)
-        all.insert(all.end(), v.baseMissed.begin(), v.baseMissed.end());
-    return median(std::move(all));
-}
-double LibraryScore::medianTipMissed() const {
-    std::vector<float> all;
-    for (const ViewScore& v : views) all.insert(all.end(), v.tipMissed.begin(), v.tipMissed.end());
-    return median(std::move(all));
-}
+double LibraryScore::medianLengthError() const { return medianOver(&ViewScore::lengthError); }
+double LibraryScore::medianWidthError() const { return medianOver(&ViewScore::widthError); }
+double LibraryScore::medianBaseMissed() const { return medianOver(&ViewScore::baseMissed); }
+double LibraryScore::medianTipMissed() const { return medianOver(&ViewScore::tipMissed); }
 double LibraryScore::meanCountError() const {
     double sum = 0;
     for (const ViewScore& v : views) sum += std::abs(v.archetypes - v.leaves);

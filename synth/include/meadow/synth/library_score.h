@@ -104,6 +104,10 @@ struct LibraryScore {
     [[nodiscard]] double medianBaseMissed() const;  // NaN without matches
     [[nodiscard]] double medianTipMissed() const;
     [[nodiscard]] double meanCountError() const;  // |archetypes in a view - leaves| per view
+
+private:
+    // The median of one per-match list over every view (NaN when empty).
+    [[nodiscard]] double medianOver(std::vector<float> ViewScore::*perMatch) const;
 };
 
 // Throws SynthError when an archetype carries no camera placement (a library from an older
