@@ -1,6 +1,8 @@
 // A blade's mask lives in its bounding box; these place it in the frame.
 #include "meadow/capture/blade_contour.h"
 
+#include <limits>
+
 namespace meadow::capture {
 
 bool BladeContour::covers(cv::Point p_px) const {
@@ -15,6 +17,18 @@ cv::Mat1b BladeContour::frameMask(cv::Size frameSize) const {
     const cv::Rect inFrame = maskBox_px() & cv::Rect({0, 0}, frameSize);
     if (!inFrame.empty()) mask(inFrame - maskOrigin_px).copyTo(out(inFrame));
     return out;
+}
+
+int nearestPointIndex(const std::vector<cv::Point>& outline, cv::Point2f p) {
+    int best = 0;
+    double bestSquared = std::numeric_limits<double>::max();
+    for (std::size_t i = 0; i < outline.size(); ++i) {
+        const double dx = outline[i].x - static_cast<double>(p.x);
+        const double dy = outline[i].y - static_cast<double>(p.y);
+        if (dx * dx + dy * dy < bestSquared)
+            bestSquared = dx * dx + dy * dy, best = static_cast<int>(i);
+    }
+    return best;
 }
 
 }  // namespace meadow::capture

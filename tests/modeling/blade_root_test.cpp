@@ -10,6 +10,7 @@
 #include <optional>
 #include <vector>
 
+#include "meadow/capture/blade_contour.h"
 #include "meadow/modeling/blade_fit.h"
 #include "modeling/blade_fit_synthetic_test.h"
 
@@ -104,20 +105,14 @@ TEST(BladeRoot, ALeafCutFromAStemHasTheFlareWhereItMeetsTheStemBounded) {
     cv::findContours(drawn, outlines, cv::RETR_EXTERNAL, cv::CHAIN_APPROX_NONE);
     ASSERT_EQ(outlines.size(), 1u);
     std::vector<cv::Point> outline = outlines[0];
-    const auto nearest = [&](cv::Point p) {
-        return static_cast<int>(std::min_element(outline.begin(), outline.end(),
-                                                 [&](cv::Point a, cv::Point b) {
-                                                     return cv::norm(a - p) < cv::norm(b - p);
-                                                 }) -
-                                outline.begin());
-    };
-    std::rotate(outline.begin(), outline.begin() + nearest(base), outline.end());
+    std::rotate(outline.begin(), outline.begin() + capture::nearestPointIndex(outline, base),
+                outline.end());
     capture::Segmentation seg;
     seg.clusterMask = drawn;
     capture::BladeContour leaf;
     leaf.id = 1;
     leaf.contour_px = outline;
-    leaf.tipIndex = nearest(tip);
+    leaf.tipIndex = capture::nearestPointIndex(outline, tip);
     leaf.mask = drawn;
     seg.blades.push_back(leaf);
     capture::BladeCluster cluster;

@@ -61,16 +61,9 @@ std::optional<BladeContour> leafContour(const cv::Mat1b& leafMask, const LeafStr
         *std::max_element(contours.begin(), contours.end(),
                           [](const auto& a, const auto& b) { return a.size() < b.size(); });
     if (static_cast<int>(outline.size()) < minContour_px) return std::nullopt;
-    const auto nearestOn = [&](cv::Point p) {
-        return static_cast<int>(std::min_element(outline.begin(), outline.end(),
-                                                 [&](cv::Point a, cv::Point b) {
-                                                     return cv::norm(a - p) < cv::norm(b - p);
-                                                 }) -
-                                outline.begin());
-    };
     const int n = static_cast<int>(outline.size());
-    const int baseAt = nearestOn(leaf.base);
-    const int tipAt = nearestOn(leaf.tip);
+    const int baseAt = nearestPointIndex(outline, leaf.base);
+    const int tipAt = nearestPointIndex(outline, leaf.tip);
     BladeContour blade;
     blade.contour_px.reserve(outline.size());
     for (int s = 0; s < n; ++s) blade.contour_px.push_back(outline[(baseAt + s) % n] + origin);

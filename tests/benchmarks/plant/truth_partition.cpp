@@ -4,6 +4,7 @@
 #include <map>
 #include <opencv2/imgproc.hpp>
 
+#include "meadow/capture/blade_contour.h"
 #include "meadow/capture/depth_source.h"
 #include "meadow/modeling/blade_fit.h"
 #include "meadow/modeling/error.h"
@@ -14,18 +15,6 @@ namespace {
 
 // Fewer read pixels than this hold no contour worth cutting.
 constexpr int kMinLeafPixels = 30;
-
-int nearestIndex(const std::vector<cv::Point>& contour, glm::vec2 p) {
-    int best = 0;
-    float bestDistance = std::numeric_limits<float>::max();
-    for (std::size_t i = 0; i < contour.size(); ++i) {
-        const float dx = static_cast<float>(contour[i].x) - p.x;
-        const float dy = static_cast<float>(contour[i].y) - p.y;
-        if (dx * dx + dy * dy < bestDistance)
-            bestDistance = dx * dx + dy * dy, best = static_cast<int>(i);
-    }
-    return best;
-}
 
 // The leaf's largest read piece as a blade: its contour from the point nearest its true base,
 // round its true tip and back; and as a cluster of its own whose base point is that base.
@@ -41,11 +30,11 @@ bool addLeaf(const synth::TruthLeaf& leaf, const cv::Mat1b& pixels, const captur
     if (contour.size() < 8) return false;
     const glm::vec2 base = k.project(leaf.line.front());
     const glm::vec2 tip = k.project(leaf.line.back());
-    const int from = nearestIndex(contour, base);
+    const int from = capture::nearestPointIndex(contour, {base.x, base.y});
     std::rotate(contour.begin(), contour.begin() + from, contour.end());
     capture::BladeContour blade;
     blade.id = static_cast<int>(seg.blades.size()) + 1;
-    blade.tipIndex = nearestIndex(contour, tip);
+    blade.tipIndex = capture::nearestPointIndex(contour, {tip.x, tip.y});
     if (blade.tipIndex == 0) return false;
     const cv::Rect box = cv::boundingRect(contour);
     cv::Mat1b own = cv::Mat1b::zeros(pixels.size());

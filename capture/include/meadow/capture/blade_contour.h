@@ -54,4 +54,8 @@ struct BladeContour {
     [[nodiscard]] cv::Rect maskBox_px() const { return {maskOrigin_px, mask.size()}; }
 };
 
+// The index of the point of `outline` nearest `p` (the first of equals; 0 for an empty outline):
+// where a blade's contour starts (nearest its base) and where its tip is.
+[[nodiscard]] int nearestPointIndex(const std::vector<cv::Point>& outline, cv::Point2f p);
+
 }  // namespace meadow::capture
