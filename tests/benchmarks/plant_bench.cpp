@@ -36,14 +36,19 @@ const std::vector<std::string> kPlants{"v-3-1", "v-3-2", "v-6-1", "v-6-2", "v-9-
 const std::vector<std::string> kTuftPresets{"quadratic-leaf", "shrub-leaf", "bamboo-leaf",
                                             "sharp-tip", "slim-grass"};
 
+template <typename T>
+void append(std::vector<T>& to, const std::vector<T>& from) {
+    to.insert(to.end(), from.begin(), from.end());
+}
+
 // Per frame: all of capture; finding the plant (depth band, plane removal, plant finding);
 // cutting it into blades (partition).
 struct FrameTimes {
     std::vector<double> capture_ms, finding_ms, partition_ms;
     void add(const FrameTimes& o) {
-        capture_ms.insert(capture_ms.end(), o.capture_ms.begin(), o.capture_ms.end());
-        finding_ms.insert(finding_ms.end(), o.finding_ms.begin(), o.finding_ms.end());
-        partition_ms.insert(partition_ms.end(), o.partition_ms.begin(), o.partition_ms.end());
+        append(capture_ms, o.capture_ms);
+        append(finding_ms, o.finding_ms);
+        append(partition_ms, o.partition_ms);
     }
 };
 
@@ -58,11 +63,9 @@ struct Row {
     void add(const Row& o) {
         views += o.views, leaves += o.leaves, matched += o.matched;
         for (std::size_t k = 0; k < falseBlades.size(); ++k) falseBlades[k] += o.falseBlades[k];
-        lengthError.insert(lengthError.end(), o.lengthError.begin(), o.lengthError.end());
-        widthError.insert(widthError.end(), o.widthError.begin(), o.widthError.end());
-        baseMissed.insert(baseMissed.end(), o.baseMissed.begin(), o.baseMissed.end());
-        tipMissed.insert(tipMissed.end(), o.tipMissed.begin(), o.tipMissed.end());
-        stemError.insert(stemError.end(), o.stemError.begin(), o.stemError.end());
+        for (auto list : {&Row::lengthError, &Row::widthError, &Row::baseMissed, &Row::tipMissed,
+                          &Row::stemError})
+            append(this->*list, o.*list);
         countError += o.countError, baselineCountError += o.baselineCountError;
         times.add(o.times);
     }
@@ -118,8 +121,12 @@ modeling::ArchetypeLibrary captureEachFrame(const fs::path& recording, int frame
 
 // The rows of the truth's own leaves, each modelled as capture models a blade: carried to where
 // its true centre line starts, and as far down as the sensor read it.
-constexpr const char* kTruthLeaves = "truth leaves (bound)";
-constexpr const char* kTruthLeavesAsSeen = "truth leaves as seen (bound)";
+struct TruthRow {
+    const char* name;
+    TruthBase base;
+};
+constexpr TruthRow kTruthRows[] = {{"truth leaves (bound)", TruthBase::WhereItStarts},
+                                   {"truth leaves as seen (bound)", TruthBase::LowestSeen}};
 
 // The baseline's depth band: the plant's distance from the camera +- kBaselineBand_m, as a user
 // would set it.
@@ -135,10 +142,10 @@ Row score(const modeling::ArchetypeLibrary& library, const synth::ScoringTruth& 
         row.leaves += vs.leaves, row.matched += vs.matched;
         for (std::size_t k = 0; k < row.falseBlades.size(); ++k)
             row.falseBlades[k] += vs.falseBlades[k];
-        row.lengthError.insert(row.lengthError.end(), vs.lengthError.begin(), vs.lengthError.end());
-        row.widthError.insert(row.widthError.end(), vs.widthError.begin(), vs.widthError.end());
-        row.baseMissed.insert(row.baseMissed.end(), vs.baseMissed.begin(), vs.baseMissed.end());
-        row.tipMissed.insert(row.tipMissed.end(), vs.tipMissed.begin(), vs.tipMissed.end());
+        append(row.lengthError, vs.lengthError);
+        append(row.widthError, vs.widthError);
+        append(row.baseMissed, vs.baseMissed);
+        append(row.tipMissed, vs.tipMissed);
         row.countError += std::abs(vs.archetypes - vs.leaves);
         char name[32];
         std::snprintf(name, sizeof name, "%06d.png", vs.frame);
@@ -274,11 +281,10 @@ int run(int argc, char** argv) {
     const auto findingName = [](const Method& m) { return m.name(); };
     // The last two kinds of row per sensor: the truth's own leaves, modelled (the partition's
     // bounds).
-    const std::size_t kinds = findings.size() + (defaultOnly ? 0 : 2);
+    const std::size_t kinds = findings.size() + (defaultOnly ? 0 : std::size(kTruthRows));
+    const auto truthRow = [&](std::size_t f) { return kTruthRows[f - findings.size()]; };
     const auto kindName = [&](std::size_t f) {
-        return f < findings.size()    ? findingName(findings[f])
-               : f == findings.size() ? std::string(kTruthLeaves)
-                                      : std::string(kTruthLeavesAsSeen);
+        return f < findings.size() ? findingName(findings[f]) : std::string(truthRow(f).name);
     };
     for (const std::string& sensor : haveScans ? sensors : std::vector<std::string>{}) {
         std::vector<Row> totals(kinds);
@@ -299,11 +305,8 @@ int run(int argc, char** argv) {
             for (std::size_t f = 0; f < kinds; ++f) {
                 FrameTimes times;
                 const modeling::ArchetypeLibrary library =
-                    f < findings.size()
-                        ? captureEachFrame(o.out, views, times, true, findings[f])
-                        : modelTruthLeaves(o.out, scoring, {},
-                                           f == findings.size() ? TruthBase::WhereItStarts
-                                                                : TruthBase::LowestSeen);
+                    f < findings.size() ? captureEachFrame(o.out, views, times, true, findings[f])
+                                        : modelTruthLeaves(o.out, scoring, {}, truthRow(f).base);
                 Row row = score(library, scoring, o.out, truth.options.distance_m);
                 row.times = times;
                 if (library.stem)
@@ -372,13 +375,13 @@ int run(int argc, char** argv) {
           "rows): |measured - true| / true for each plant, the height the library reports (its "
           "views' median, from the stem's foot to the highest node) against the truth's (from "
           "the foot to the farthest leaf base). The rows \""
-       << kTruthLeaves
+       << kTruthRows[0].name
        << "\" bound what any partition could reach on these views: each leaf cut as the truth "
           "cuts it (its own pixels the sensor read, its base and tip where its true centre "
           "line starts and ends) and modelled as capture models a blade, carried down to where "
           "its true centre line starts as a tuft's blade is carried to the tuft's base; what "
           "they miss, the sensor did not show well enough or the model cannot hold. The rows \""
-       << kTruthLeavesAsSeen
+       << kTruthRows[1].name
        << "\" model the same leaves only as far down as the sensor read them, as capture models "
           "a leaf cut from a stem: the length a partition reaches without guessing where a "
           "hidden base is. Missed at base / tip: for each matched leaf, the share of its true "
