@@ -168,7 +168,6 @@ void rootSkeleton(Skeleton& s, const ClusterBase& base, const RootParams& params
 
     // Widths of the fork's flare bounded, and carried down the added piece (kWidthReferenceFrom).
     const FlareReference flare = boundBaseFlare(s);
-    const float referencePx = flare.px, referenceM = flare.m;
     const auto prepend = [](auto& v, auto value) { v.insert(v.begin(), value); };
     std::vector<glm::vec3> points = s.points_m;
     prepend(points, base.base_m);
@@ -179,8 +178,8 @@ void rootSkeleton(Skeleton& s, const ClusterBase& base, const RootParams& params
     prepend(acrossStep, glm::vec3(0.f));  // the added piece was not read
     prepend(midline, base.base_px);
     prepend(across, across.empty() ? glm::vec2(1.f, 0.f) : across.front());
-    prepend(width_px, referencePx);
-    prepend(width_m, referenceM);
+    prepend(width_px, flare.px);
+    prepend(width_m, flare.m);
     prepend(depth, base.base_m.z);
     // Points before the first station on the original chain lie on the added piece.
     s.rootPoints = static_cast<int>(std::count_if(stations.begin(), stations.end(),
@@ -242,8 +241,9 @@ Skeleton segmentedBladeSkeleton(const capture::Segmentation& segmentation, std::
     // A leaf cut where it leaves a stem (PartitionMethod::StemGraph) starts at its own base: its
     // length runs along it, not down the stem to the plant's foot. Its outline starts where it
     // meets the stem and its neighbours, so its lowest widths flare as a fork's do.
-    if (leavesAStem(segmentation, blade.id)) boundBaseFlare(skeleton);
-    if (params.root.enabled && !leavesAStem(segmentation, blade.id)) {
+    const bool cutFromAStem = leavesAStem(segmentation, blade.id);
+    if (cutFromAStem) boundBaseFlare(skeleton);
+    if (params.root.enabled && !cutFromAStem) {
         if (const auto base = clusterBase(segmentation, blade.id, frame, params.root)) {
             rootSkeleton(skeleton, *base, params.root);
         } else {
