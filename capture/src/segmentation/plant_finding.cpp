@@ -44,9 +44,8 @@ constexpr int kLeftOutShareOfPlant = 8;
 // What a user whose plant is thin but only too small (over half a plant's pixels) should do.
 constexpr const char* kBringCloser = ": bring the camera closer if it is the plant";
 // Beyond the distances the guide tests (docs/capture.md, up to 1.2 m) a broad-leaved plant's
-// leaves blur into one another on a time-of-flight or stereo camera: a grown maize shoot at
-// 1.7-1.9 m measured 4.2-4.8 cm wide and 9-16 times as long (no plant); a Kinect v2 found it at
-// 1.5 m.
+// leaves blur into one another on a time-of-flight or stereo camera, and its parts measure too
+// short for their width; nearer, they part.
 constexpr float kGuideFarthest_m = 1.2f;
 constexpr const char* kBroadBringCloser =
     ": bring the camera closer if it is a broad-leaved plant (from afar its leaves blur into one "
