@@ -19,10 +19,6 @@ constexpr int kMaxCount = std::numeric_limits<int>::max();
 // or width is another unit or a corrupt file.
 constexpr float kMaxBladeExtent_m = 10.f;
 
-// One full turn about the spine from base to tip is already more than any leaf shows; more is a
-// unit mistake (degrees for radians).
-constexpr float kMaxTwist_rad = 6.2831853f;
-
 json vec3ToJson(const glm::vec3& v) { return json::array({v.x, v.y, v.z}); }
 
 }  // namespace
@@ -102,7 +98,8 @@ Archetype archetypeFromJson(const json& value, const std::string& path) {
     a.tau = r.floatNumber("tau", 0.5f, 0.f, 1.f);
     // Absent in older libraries: symmetric and flat.
     a.leftWidthFraction = r.floatNumber("left_width_fraction", 0.5f, 0.f, 1.f);
-    a.twistAtTip_rad = r.floatNumber("twist_at_tip_rad", 0.f, -kMaxTwist_rad, kMaxTwist_rad);
+    a.twistAtTip_rad =
+        r.floatNumber("twist_at_tip_rad", 0.f, -kMaxTwistAtTip_rad, kMaxTwistAtTip_rad);
     // Fit report, source and knots are optional: an authored archetype has none.
     if (r.has("fit")) {
         const JsonReader fit = r.object("fit");

@@ -1,6 +1,9 @@
 // The face's turn about the spine, read from the depth across the blade (blade_fit.h, fitTwist).
+#include <algorithm>
 #include <cmath>
+#include <complex>
 #include <glm/geometric.hpp>
+#include <numbers>
 
 #include "meadow/modeling/blade_fit.h"
 
@@ -19,6 +22,12 @@ constexpr float kOutlierRms = 3.f;
 constexpr float kMinOutlier_rad = 0.17f;
 // A twist smaller than this many standard errors of the slope is noise, not a twist.
 constexpr float kSignificantSlope = 2.f;
+// Reads that, outliers left out, agree less than this about their line (the mean resultant of
+// their doubled residuals, about exp(-2 rms^2): 0.85 is a scatter of 0.29 rad rms) hold no face
+// direction: not measured,
+// and the widths not scaled. Narrow leaves read by a noisy sensor scatter more; scaled by their
+// reads, their widths come out too wide (docs/measurements/plant_benchmark.md, width error).
+constexpr float kMinAgreement = 0.85f;
 // Below this share of its width facing the camera a blade is read too edge-on for its width to
 // be scaled back up: the correction stops at 1 / kMinFacing.
 constexpr float kMinFacing = 0.35f;
@@ -47,6 +56,60 @@ Line fitLine(const std::vector<float>& x, const std::vector<float>& y,
     // sum (x - mean)^2 = det / m
     l.slopeError = m > 2 ? std::sqrt(ss / (m - 2) / (det / m)) : 0.0;
     return l;
+}
+
+// A ribbon's width direction is a line, not an arrow: its angle is known up to a half turn, and
+// each read lies in [-pi/2, pi/2]. A blade near edge-on reads on both sides of +-pi/2, and one
+// twisted past a quarter turn wraps. So the line through the reads is found on the circle first,
+// with the angles doubled (a half turn becomes a whole one): the slope, searched over what a
+// library holds, whose residuals agree best (the largest mean resultant of exp(2i(angle - slope
+// s))). Each read is then moved by whole half turns to lie nearest that line.
+void unwrapAboutCircularLine(std::vector<float>& angle, const std::vector<float>& s,
+                             const std::vector<char>& use) {
+    // The peak spans radians (the reads spread over at least 0.4 of the blade): a coarse search,
+    // then a fine one about its best.
+    constexpr float kCoarseStep_rad = 0.1f, kFineStep_rad = 0.005f;
+    const auto resultant = [&](float slope) {
+        std::complex<double> sum = 0.0;
+        int m = 0;
+        for (std::size_t j = 0; j < angle.size(); ++j)
+            if (use[j]) sum += std::polar(1.0, 2.0 * (angle[j] - slope * s[j])), ++m;
+        return std::pair{sum, m};
+    };
+    float bestSlope = 0.f;
+    double bestLength = -1.0;
+    const auto search = [&](float from, float to, float step) {
+        const float centre = bestSlope;
+        for (float slope = centre + from; slope <= centre + to; slope += step)
+            if (std::abs(slope) <= kMaxTwistAtTip_rad)
+                if (const auto [sum, m] = resultant(slope); std::abs(sum) > bestLength)
+                    bestLength = std::abs(sum), bestSlope = slope;
+    };
+    search(-kMaxTwistAtTip_rad, kMaxTwistAtTip_rad, kCoarseStep_rad);
+    search(-kCoarseStep_rad, kCoarseStep_rad, kFineStep_rad);
+    const double intercept = 0.5 * std::arg(resultant(bestSlope).first);
+    const double halfTurn = std::numbers::pi;
+    for (std::size_t j = 0; j < angle.size(); ++j)
+        if (use[j]) {
+            const double onLine = intercept + bestSlope * s[j];
+            angle[j] += static_cast<float>(halfTurn * std::round((onLine - angle[j]) / halfTurn));
+        }
+}
+
+// How well the reads kept agree about the line: the mean resultant of their doubled residuals
+// (1: all on it, near 0: scattered as noise).
+float agreementAbout(const Line& line, const std::vector<float>& angle, const std::vector<float>& s,
+                     const std::vector<char>& use) {
+    std::complex<double> sum = 0.0;
+    for (std::size_t j = 0; j < angle.size(); ++j)
+        if (use[j]) sum += std::polar(1.0, 2.0 * (angle[j] - line.intercept - line.slope * s[j]));
+    return line.points > 0 ? static_cast<float>(std::abs(sum) / line.points) : 0.f;
+}
+
+// The same line of the ribbon, its angle moved by whole half turns into [-pi/2, pi/2).
+float withinAHalfTurn(double angle) {
+    const double halfTurn = std::numbers::pi;
+    return static_cast<float>(angle - halfTurn * std::floor(angle / halfTurn + 0.5));
 }
 
 // Width direction of the ribbon at a spine point (blade_mesh.h): W = normalize(T x Z).
@@ -85,18 +148,22 @@ TwistFit fitTwist(const Skeleton& skeleton, const BladeFrame& frame,
     float lo = 1.f, hi = 0.f;
     for (std::size_t j = 0; j < n; ++j)
         if (use[j]) lo = std::min(lo, s[j]), hi = std::max(hi, s[j]);
+    unwrapAboutCircularLine(angle, s, use);
     Line line = fitLine(s, angle, use);
     if (line.points < kMinTwistPoints || hi - lo < kMinTwistSpread) return out;
     const double cut = std::max<double>(kOutlierRms * line.rms, kMinOutlier_rad);
     for (std::size_t j = 0; j < n; ++j)
         if (use[j] && std::abs(angle[j] - (line.intercept + line.slope * s[j])) > cut) use[j] = 0;
     line = fitLine(s, angle, use);
-    if (line.points < kMinTwistPoints) return out;
+    // More than a full turn from base to tip is no leaf's twist: the reads are noise.
+    if (line.points < kMinTwistPoints || std::abs(line.slope) > kMaxTwistAtTip_rad ||
+        agreementAbout(line, angle, s, use) < kMinAgreement)
+        return out;
 
     out.measured = true;
     out.points = line.points;
     out.rms_rad = static_cast<float>(line.rms);
-    out.baseTilt_rad = static_cast<float>(line.intercept);
+    out.baseTilt_rad = withinAHalfTurn(line.intercept);
     const bool significant = std::abs(line.slope) > kSignificantSlope * line.slopeError;
     out.twistAtTip_rad = significant ? static_cast<float>(line.slope) : 0.f;
     // How much of the fitted width direction faces the camera at each point: the width the

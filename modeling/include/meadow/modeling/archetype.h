@@ -61,8 +61,9 @@ struct FitReport {
     // the tapering width's trend reaches zero (0: not extended).
     float tipExtension_mm = 0.f;
     // Twist (blade_fit.h, fitTwist): points read across the blade behind it (0: not measured),
-    // and the base's tilt off the face plane the frame assumed; widths are scaled back up by
-    // how much of the face turned away from the camera.
+    // and the base's tilt off the face plane the frame assumed (-90 to 90 deg: a ribbon turned a
+    // half turn is the same ribbon); widths are scaled back up by how much of the face turned
+    // away from the camera.
     int twistPoints = 0;
     float baseTilt_deg = 0.f;
 };
@@ -92,6 +93,10 @@ struct Source {
     glm::mat4 cameraFromBlade{1.f};
 };
 
+// One full turn about the spine from base to tip is already more than any leaf shows: a library
+// holding more has another unit (degrees for radians), and a fit reading more read noise.
+inline constexpr float kMaxTwistAtTip_rad = 6.2831853f;
+
 struct Archetype {
     std::string name;
     QuadraticBezier spine_m;  // blade-local frame above
@@ -102,7 +107,8 @@ struct Archetype {
     // 0.5 is symmetric, 0.3 puts 30 % left and 70 % right. In [0, 1].
     float leftWidthFraction = 0.5f;
     // Rotation of the width direction about the spine tangent at the tip (radians, right-handed
-    // about the tangent), growing linearly with arc length from 0 at the base.
+    // about the tangent), growing linearly with arc length from 0 at the base. At most
+    // kMaxTwistAtTip_rad either way.
     float twistAtTip_rad = 0.f;
     FitReport fit;
     Source source;
