@@ -18,6 +18,7 @@
 #include "common/report.h"
 #include "meadow/capture/depth_source.h"
 #include "meadow/capture/segmenter.h"
+#include "meadow/modeling/archetype_library.h"
 #include "meadow/modeling/capture_pipeline.h"
 #include "meadow/modeling/error.h"
 #include "meadow/synth/leaf_counter.h"
@@ -116,7 +117,16 @@ modeling::ArchetypeLibrary captureEachFrame(const fs::path& recording, int frame
             times.partition_ms.push_back(stage("partition") / frames);
         }
     }
-    return result.library;
+    // Scored as a user gets it, written and read back: a value the library's reader refuses (and
+    // `meadow render` with it) stops the bench here, naming the view.
+    if (result.library.archetypes.empty()) return result.library;
+    const fs::path file = fs::temp_directory_path() /
+                          ("meadow-plant-bench-" + recording.parent_path().filename().string() +
+                           "-" + recording.filename().string() + ".json");
+    modeling::saveArchetypeLibrary(result.library, file);
+    modeling::ArchetypeLibrary readBack = modeling::loadArchetypeLibrary(file);
+    fs::remove(file);
+    return readBack;
 }
 
 // The rows of the truth's own leaves, each modelled as capture models a blade: carried to where
