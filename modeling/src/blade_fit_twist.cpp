@@ -67,27 +67,35 @@ Line fitLine(const std::vector<float>& x, const std::vector<float>& y,
 void unwrapAboutCircularLine(std::vector<float>& angle, const std::vector<float>& s,
                              const std::vector<char>& use) {
     // The peak spans radians (the reads spread over at least 0.4 of the blade): a coarse search,
-    // then a fine one about its best.
-    constexpr float kCoarseStep_rad = 0.1f, kFineStep_rad = 0.005f;
-    const auto resultant = [&](float slope) {
-        std::complex<double> sum = 0.0;
-        int m = 0;
-        for (std::size_t j = 0; j < angle.size(); ++j)
-            if (use[j]) sum += std::polar(1.0, 2.0 * (angle[j] - slope * s[j])), ++m;
-        return std::pair{sum, m};
+    // then a fine one about its best. Each read's phasor turns by a fixed step from one slope to
+    // the next: one complex product per read and slope.
+    constexpr double kCoarseStep_rad = 0.1, kFineStep_rad = 0.005;
+    std::vector<std::complex<double>> read;
+    std::vector<double> along;
+    for (std::size_t j = 0; j < angle.size(); ++j)
+        if (use[j]) read.push_back(std::polar(1.0, 2.0 * angle[j])), along.push_back(s[j]);
+    if (read.empty()) return;
+    double bestSlope = 0.0, bestLength = -1.0;
+    std::complex<double> bestSum = 0.0;
+    const auto search = [&](double from, double step, int steps) {
+        std::vector<std::complex<double>> phasor(read.size()), turn(read.size());
+        for (std::size_t j = 0; j < read.size(); ++j) {
+            phasor[j] = read[j] * std::polar(1.0, -2.0 * from * along[j]);
+            turn[j] = std::polar(1.0, -2.0 * step * along[j]);
+        }
+        for (int k = 0; k <= steps; ++k) {
+            std::complex<double> sum = 0.0;
+            for (std::size_t j = 0; j < read.size(); ++j) sum += phasor[j], phasor[j] *= turn[j];
+            if (std::abs(sum) > bestLength)
+                bestLength = std::abs(sum), bestSum = sum, bestSlope = from + k * step;
+        }
     };
-    float bestSlope = 0.f;
-    double bestLength = -1.0;
-    const auto search = [&](float from, float to, float step) {
-        const float centre = bestSlope;
-        for (float slope = centre + from; slope <= centre + to; slope += step)
-            if (std::abs(slope) <= kMaxTwistAtTip_rad)
-                if (const auto [sum, m] = resultant(slope); std::abs(sum) > bestLength)
-                    bestLength = std::abs(sum), bestSlope = slope;
-    };
-    search(-kMaxTwistAtTip_rad, kMaxTwistAtTip_rad, kCoarseStep_rad);
-    search(-kCoarseStep_rad, kCoarseStep_rad, kFineStep_rad);
-    const double intercept = 0.5 * std::arg(resultant(bestSlope).first);
+    const double most = kMaxTwistAtTip_rad;
+    search(-most, kCoarseStep_rad, static_cast<int>(2.0 * most / kCoarseStep_rad));
+    const double lo = std::max(-most, bestSlope - kCoarseStep_rad);
+    const double hi = std::min(most, bestSlope + kCoarseStep_rad);
+    search(lo, kFineStep_rad, static_cast<int>((hi - lo) / kFineStep_rad));
+    const double intercept = 0.5 * std::arg(bestSum);
     const double halfTurn = std::numbers::pi;
     for (std::size_t j = 0; j < angle.size(); ++j)
         if (use[j]) {
