@@ -24,9 +24,9 @@ constexpr float kMinOutlier_rad = 0.17f;
 constexpr float kSignificantSlope = 2.f;
 // Reads that, outliers left out, agree less than this about their line (the mean resultant of
 // their doubled residuals, about exp(-2 rms^2): 0.85 is a scatter of 0.29 rad rms) hold no face
-// direction: not measured,
-// and the widths not scaled. Narrow leaves read by a noisy sensor scatter more; scaled by their
-// reads, their widths come out too wide (docs/measurements/plant_benchmark.md, width error).
+// direction: not measured, and the widths not scaled. Narrow leaves read by a noisy sensor
+// scatter more; scaled by their reads, their widths come out too wide
+// (docs/measurements/plant_benchmark.md, width error).
 constexpr float kMinAgreement = 0.85f;
 // Below this share of its width facing the camera a blade is read too edge-on for its width to
 // be scaled back up: the correction stops at 1 / kMinFacing.
