@@ -58,14 +58,15 @@ struct Row {
     int views = 0, leaves = 0, matched = 0;
     std::array<double, 7> falseBlades{};  // summed over views, by FalseBladeOn
     std::vector<float> lengthError, widthError, baseMissed, tipMissed;
-    std::vector<float> stemError;  // |measured - true| / true stem height, one per plant
+    std::vector<float> upsideDown;  // 1 or 0 per matched leaf spanned far enough to tell
+    std::vector<float> stemError;   // |measured - true| / true stem height, one per plant
     double countError = 0.0, baselineCountError = 0.0;  // summed over views
     FrameTimes times;
     void add(const Row& o) {
         views += o.views, leaves += o.leaves, matched += o.matched;
         for (std::size_t k = 0; k < falseBlades.size(); ++k) falseBlades[k] += o.falseBlades[k];
         for (auto list : {&Row::lengthError, &Row::widthError, &Row::baseMissed, &Row::tipMissed,
-                          &Row::stemError})
+                          &Row::upsideDown, &Row::stemError})
             append(this->*list, o.*list);
         countError += o.countError, baselineCountError += o.baselineCountError;
         times.add(o.times);
@@ -156,6 +157,7 @@ Row score(const modeling::ArchetypeLibrary& library, const synth::ScoringTruth& 
         append(row.widthError, vs.widthError);
         append(row.baseMissed, vs.baseMissed);
         append(row.tipMissed, vs.tipMissed);
+        append(row.upsideDown, vs.upsideDown);
         row.countError += std::abs(vs.archetypes - vs.leaves);
         char name[32];
         std::snprintf(name, sizeof name, "%06d.png", vs.frame);
@@ -189,6 +191,7 @@ std::string cells(const Row& r) {
         << (r.baseMissed.empty() ? "-"
                                  : fixed(100.0 * median(r.baseMissed), 0) + " % / " +
                                        fixed(100.0 * median(r.tipMissed), 0) + " %")
+        << " | " << (r.upsideDown.empty() ? "-" : fixed(100.0 * mean(r.upsideDown), 0) + " %")
         << " | " << (r.widthError.empty() ? "-" : fixed(100.0 * median(r.widthError), 0) + " %")
         << " | " << (r.stemError.empty() ? "-" : fixed(100.0 * median(r.stemError), 0) + " %")
         << " | " << fixed(r.countError / views, 1) << " | "
@@ -209,6 +212,7 @@ std::string csvRow(const Row& r) {
     out << ',' << orBlank(r.lengthError, median(r.lengthError), 3) << ','
         << orBlank(r.baseMissed, median(r.baseMissed), 3) << ','
         << orBlank(r.tipMissed, median(r.tipMissed), 3) << ','
+        << orBlank(r.upsideDown, mean(r.upsideDown), 3) << ','
         << orBlank(r.widthError, median(r.widthError), 3) << ','
         << orBlank(r.stemError, median(r.stemError), 3) << ',' << fixed(r.countError / views, 2)
         << ',' << fixed(r.baselineCountError / views, 2) << ','
@@ -396,16 +400,21 @@ int run(int argc, char** argv) {
           "a leaf cut from a stem: the length a partition reaches without guessing where a "
           "hidden base is. Missed at base / tip: for each matched leaf, the share of its true "
           "centre line below the archetype's lower end and beyond its upper end (each end's "
-          "nearest point on the line). The tuft rows score the "
+          "nearest point on the line). Upside down: of the matched leaves whose archetype's ends "
+          "lie "
+          "at least a fifth of the leaf apart along it, the share whose archetype runs from the "
+          "leaf's tip side toward its base (a meadow plants it by its tip). The tuft rows score "
+          "the "
           "synthetic presets' first fused group the same way. Times, on one core, median over "
           "the frames: all of capture from depth to archetypes; finding the plant (depth band, "
           "plane removal, plant finding); the partition.\n\n"
           "| Set | Sensor | Capture | Plant | Views | Leaves | Recall | False / view | "
-          "False on | Length error (median) | Missed at base / tip (median) | Width error (median) "
+          "False on | Length error (median) | Missed at base / tip (median) | Upside down | Width "
+          "error (median) "
           "| Stem height error (median) | "
           "Count error | Baseline count error | Capture ms / frame | Finding ms / frame | "
           "Partition ms / frame |\n"
-          "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+          "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
     for (const Row& r : rows)
         md << "| " << r.set << " | " << r.sensor << " | " << r.finding << " | "
            << (r.what == "all" ? "**all**" : r.what) << " | " << cells(r) << " |\n";
@@ -414,7 +423,8 @@ int run(int argc, char** argv) {
     csv << "set,sensor,capture,plant,views,leaves,recall";
     for (std::size_t k = 0; k < 7; ++k)
         csv << ",false_on_" << synth::kFalseBladeOnNames.name(static_cast<synth::FalseBladeOn>(k));
-    csv << ",length_error_median,base_missed_median,tip_missed_median,width_error_median,stem_"
+    csv << ",length_error_median,base_missed_median,tip_missed_median,upside_down_share,width_"
+           "error_median,stem_"
            "height_error_median,count_error,baseline_"
            "count_error,capture_ms,finding_ms,partition_ms\n";
     for (const Row& r : rows) csv << csvRow(r) << '\n';

@@ -73,10 +73,12 @@ TEST(LibraryScore, AnArchetypeAlongTheLeafsUpperPartMatchesItAndIsShortAtTheBase
     EXPECT_NEAR(s.medianBaseMissed(), 0.4, 1e-3);
     EXPECT_NEAR(s.medianTipMissed(), 0.0, 1e-3);
     EXPECT_NEAR(s.medianWidthError(), 0.0, 1e-3);
+    EXPECT_DOUBLE_EQ(s.upsideDownShare(), 0.0) << "it runs from its base up, as the leaf does";
 }
 
 // The ends are read where they fall on the line, whichever way the spine runs: one drawn from
-// the tip down, stopping short at both ends, misses 10 % at the base and 25 % at the tip.
+// the tip down, stopping short at both ends, misses 10 % at the base and 25 % at the tip; it runs
+// upside down.
 TEST(LibraryScore, WhereTheArchetypeStopsShortIsReadFromBothItsEnds) {
     const float lower = kBaseY_m - 0.1f * kLength_m, upper = kBaseY_m - 0.75f * kLength_m;
     const LibraryScore s = scoreLibrary(
@@ -84,6 +86,17 @@ TEST(LibraryScore, WhereTheArchetypeStopsShortIsReadFromBothItsEnds) {
     EXPECT_EQ(s.matched(), 1);
     EXPECT_NEAR(s.medianBaseMissed(), 0.1, 1e-3);
     EXPECT_NEAR(s.medianTipMissed(), 0.25, 1e-3);
+    EXPECT_DOUBLE_EQ(s.upsideDownShare(), 1.0) << "its base end lies toward the leaf's tip";
+}
+
+// Whether an archetype runs the leaf's way is read only over a fifth of the leaf or more: a
+// piece from 50 % down to 40 % (a tenth) tells nothing, and leaves the share unread.
+TEST(LibraryScore, AShortPiecesWayAlongTheLeafIsNotRead) {
+    const float lower = kBaseY_m - 0.4f * kLength_m, upper = kBaseY_m - 0.5f * kLength_m;
+    const LibraryScore s = scoreLibrary(
+        libraryOf({straight({0.f, upper, kDepth_m}, {0.f, lower, kDepth_m})}), oneLeaf());
+    EXPECT_EQ(s.matched(), 1);
+    EXPECT_TRUE(std::isnan(s.upsideDownShare()));
 }
 
 // 3 cm beside the leaf is beyond max(10 mm, 5 % of 40 cm = 20 mm): no match, and a false blade

@@ -223,6 +223,15 @@ double LibraryScore::medianLengthError() const { return medianOver(&ViewScore::l
 double LibraryScore::medianWidthError() const { return medianOver(&ViewScore::widthError); }
 double LibraryScore::medianBaseMissed() const { return medianOver(&ViewScore::baseMissed); }
 double LibraryScore::medianTipMissed() const { return medianOver(&ViewScore::tipMissed); }
+double LibraryScore::upsideDownShare() const {
+    double sum = 0.0;
+    std::size_t n = 0;
+    for (const ViewScore& v : views) {
+        for (const float u : v.upsideDown) sum += u;
+        n += v.upsideDown.size();
+    }
+    return n ? sum / static_cast<double>(n) : std::numeric_limits<double>::quiet_NaN();
+}
 double LibraryScore::meanCountError() const {
     double sum = 0;
     for (const ViewScore& v : views) sum += std::abs(v.archetypes - v.leaves);
@@ -275,6 +284,7 @@ LibraryScore scoreLibrary(const modeling::ArchetypeLibrary& library, const Scori
             const float other = arcShareNearest(spine.back(), leaf.line);
             vs.baseMissed.push_back(std::min(one, other));
             vs.tipMissed.push_back(1.f - std::max(one, other));
+            if (std::abs(other - one) >= kOrientedSpan) vs.upsideDown.push_back(one > other);
         }
         for (std::size_t l = 0; l < view.leaves.size(); ++l)
             if (view.leaves[l].visiblePixels >= rule.minVisiblePixels) {

@@ -78,6 +78,10 @@ struct MatchRule {
     int minVisiblePixels = 300;  // for a leaf to count in recall
 };
 
+// An archetype's way along its leaf is read only where its ends lie this far apart along the
+// leaf (a share of its length): a short piece's ends fall within the readings' scatter.
+inline constexpr float kOrientedSpan = 0.2f;
+
 struct ViewScore {
     int frame = 0;
     int leaves = 0;                    // true leaves with at least minVisiblePixels
@@ -88,6 +92,9 @@ struct ViewScore {
     std::vector<float> widthError;     // |widest archetype - widest leaf| / widest leaf
     std::vector<float> baseMissed;     // share of the matched leaf's line below the archetype
     std::vector<float> tipMissed;      // share of it beyond the archetype's upper end
+    // Per matched leaf whose archetype spans at least kOrientedSpan of it: 1 when the archetype
+    // runs from the leaf's tip side toward its base (it would be planted by its tip), else 0.
+    std::vector<float> upsideDown;
     [[nodiscard]] int falseCount() const;
 };
 
@@ -103,7 +110,8 @@ struct LibraryScore {
     [[nodiscard]] double medianWidthError() const;
     [[nodiscard]] double medianBaseMissed() const;  // NaN without matches
     [[nodiscard]] double medianTipMissed() const;
-    [[nodiscard]] double meanCountError() const;  // |archetypes in a view - leaves| per view
+    [[nodiscard]] double meanCountError() const;   // |archetypes in a view - leaves| per view
+    [[nodiscard]] double upsideDownShare() const;  // of ViewScore::upsideDown; NaN without any
 
 private:
     // The median of one per-match list over every view (NaN when empty).
