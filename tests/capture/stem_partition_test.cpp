@@ -87,6 +87,23 @@ TEST(StemPartition, TheStemsShareHoldsTheStemAndNoLeaf) {
     }
 }
 
+// A leaf arching over from beside the stem (its base hidden there, so its skeleton ends free)
+// comes to rest with its tip on the lowest leaf. Its base is the end by the stem, not the end
+// that meets another leaf: modelled the other way round, a meadow would plant it by its tip.
+TEST(StemPartition, ALeafWhoseTipRestsOnAnotherHasItsBaseByTheStem) {
+    cv::Mat1b mask = plantMask();
+    const cv::Point base(88, 125), arch(65, 95), tip(48, 118);
+    const std::vector<cv::Point> leaf{base, arch, {52, 98}, tip};
+    cv::polylines(mask, std::vector<std::vector<cv::Point>>{leaf}, false, 255, 7);
+    const Segmentation seg = segmentByStem(mask);
+    const auto it = std::find_if(seg.blades.begin(), seg.blades.end(),
+                                 [&](const BladeContour& b) { return b.covers(arch); });
+    ASSERT_NE(it, seg.blades.end()) << seg.summary();
+    const cv::Point from = it->contour_px.front();
+    EXPECT_LT(cv::norm(from - base), cv::norm(from - tip)) << "the blade starts at " << from << "\n"
+                                                           << seg.summary();
+}
+
 TEST(StemPartition, SpursOfTheEdgeAreNoLeaves) {
     cv::Mat1b mask = plantMask();
     // A bump on the stem's side, 6 px out: its skeleton branch is a spur.

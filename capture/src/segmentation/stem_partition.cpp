@@ -8,6 +8,7 @@
 // from a stem this way; Fan & Sheng's contour partition assumes blades fanning from one base,
 // which a stem breaks.
 #include <algorithm>
+#include <limits>
 #include <opencv2/imgproc.hpp>
 
 #include "segmentation/cluster_skeleton.h"
@@ -20,15 +21,23 @@ namespace {
 constexpr int kNone = -1;
 constexpr int kStem = 0;  // the stem's (or a tuft's shared base's) label; leaves are 1, 2, ...
 
-// A leaf: its skeleton, from its base (where it leaves the stem, or its end nearest the plant's
-// foot when it meets nothing) to its tip.
+// A leaf: its skeleton, from its base (its end nearer the stem, where it leaves it; without a
+// stem, the end that meets another, or the end nearer the plant's foot) to its tip.
 struct LeafStrand {
     std::vector<cv::Point> path;
     cv::Point base, tip;
     bool endMeetsAnother = false;  // its far end meets another leaf or the stem, not free
 };
 
-LeafStrand leafOf(const SkeletonGraph& graph, const Strand& s, cv::Point2f plantFoot) {
+// The image distance from `p` to the nearest pixel of `line` (infinite for an empty line).
+double distanceTo(cv::Point p, const std::vector<cv::Point>& line) {
+    double nearest = std::numeric_limits<double>::infinity();
+    for (const cv::Point& q : line) nearest = std::min(nearest, cv::norm(p - q));
+    return nearest;
+}
+
+LeafStrand leafOf(const SkeletonGraph& graph, const Strand& s, cv::Point2f plantFoot,
+                  const std::vector<cv::Point>& stemLine) {
     LeafStrand leaf;
     leaf.path = s.path(graph);
     const bool startFree = graph.nodes[static_cast<std::size_t>(s.startNode)].tip;
@@ -43,7 +52,12 @@ LeafStrand leafOf(const SkeletonGraph& graph, const Strand& s, cv::Point2f plant
     }
     leaf.endMeetsAnother = !startFree && !endFree;
     bool fromStart = !startFree && endFree;
-    if (startFree == endFree)  // both meet others, or neither: the end nearer the foot
+    // A leaf arching over hangs its tip low, nearer the foot than its base may be, and its tip
+    // may come to rest on another leaf: the stem is where it leaves.
+    if (!stemLine.empty())
+        fromStart =
+            distanceTo(leaf.path.front(), stemLine) <= distanceTo(leaf.path.back(), stemLine);
+    else if (startFree == endFree)  // both meet others, or neither: the end nearer the foot
         fromStart = cv::norm(cv::Point2f(leaf.path.front()) - plantFoot) <=
                     cv::norm(cv::Point2f(leaf.path.back()) - plantFoot);
     leaf.base = fromStart ? leaf.path.front() : leaf.path.back();
@@ -191,9 +205,15 @@ std::vector<BladeContour> partitionByStem(BladeCluster& cluster, const cv::Mat1b
     if (graph.rootNode != kNone)
         for (const cv::Point& p : graph.nodes[static_cast<std::size_t>(graph.rootNode)].pixels)
             footRow = std::min(footRow, static_cast<float>(p.y));
+    std::vector<cv::Point> stemLine;
+    for (const int i : stem) {
+        const std::vector<cv::Point> path =
+            strands.strands[static_cast<std::size_t>(i)].path(graph);
+        stemLine.insert(stemLine.end(), path.begin(), path.end());
+    }
     for (std::size_t i = 0; i < strands.strands.size(); ++i) {
         if (isStem[i]) continue;
-        LeafStrand leaf = leafOf(graph, strands.strands[i], foot);
+        LeafStrand leaf = leafOf(graph, strands.strands[i], foot, stemLine);
         if (static_cast<float>(leaf.path.size()) < params.minLeafBranch_px) continue;
         // Where the plant stands is known (the top of its pot): what lies wholly below it is
         // the pot's rim or the ground, not a leaf; leaves leave the stem above it.
@@ -206,9 +226,7 @@ std::vector<BladeContour> partitionByStem(BladeCluster& cluster, const cv::Mat1b
         labelOfStrand[i] = static_cast<int>(leaves.size());
     }
     cluster.stemLine_px.clear();
-    for (const int i : stem)
-        for (const cv::Point& p : strands.strands[static_cast<std::size_t>(i)].path(graph))
-            cluster.stemLine_px.push_back(p + box.tl());
+    for (const cv::Point& p : stemLine) cluster.stemLine_px.push_back(p + box.tl());
 
     const SkeletonOwners owners =
         ownersOnSkeleton(graph, strands, isStem, labelOfStrand, onSkeleton, box.size());
