@@ -104,6 +104,23 @@ TEST(StemPartition, ALeafWhoseTipRestsOnAnotherHasItsBaseByTheStem) {
                                                            << seg.summary();
 }
 
+// A leaf cut off from the plant (its base hidden: a region of its own) arches out and hangs its
+// tip low, nearer the plant's foot than its base. It is based by the stem the plant's other
+// region holds, at its end nearer the stem, not by where its own region reaches lowest.
+TEST(StemPartition, ALeafInARegionOfItsOwnIsBasedByThePlantsStem) {
+    cv::Mat1b mask = plantMask();
+    const cv::Point base(125, 125), arch(150, 135), tip(160, 185);
+    cv::polylines(mask, std::vector<std::vector<cv::Point>>{{base, arch, tip}}, false, 255, 7);
+    const Segmentation seg = segmentByStem(mask);
+    ASSERT_EQ(seg.clusters.size(), 2u) << seg.summary();
+    const auto it = std::find_if(seg.blades.begin(), seg.blades.end(),
+                                 [&](const BladeContour& b) { return b.covers(arch); });
+    ASSERT_NE(it, seg.blades.end()) << seg.summary();
+    const cv::Point from = it->contour_px.front();
+    EXPECT_LT(cv::norm(from - base), cv::norm(from - tip)) << "the blade starts at " << from << "\n"
+                                                           << seg.summary();
+}
+
 TEST(StemPartition, SpursOfTheEdgeAreNoLeaves) {
     cv::Mat1b mask = plantMask();
     // A bump on the stem's side, 6 px out: its skeleton branch is a spur.

@@ -337,13 +337,24 @@ struct Segmenter::Impl {
             out.clusters = seg::extractClusters(mask, region, sensed, params, r);
         });
         stage(out, "partition", nullptr, [&](StageReport& r) {
-            for (auto& cluster : out.clusters) {
+            // The largest cluster first: the one that holds the stem, by which leaves cut off
+            // from it in clusters of their own are based.
+            std::vector<std::size_t> order(out.clusters.size());
+            std::iota(order.begin(), order.end(), std::size_t{0});
+            if (params.partition == PartitionMethod::StemGraph)
+                std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+                    return out.clusters[a].area_px > out.clusters[b].area_px;
+                });
+            std::vector<cv::Point> plantStem_px;
+            for (const std::size_t c : order) {
+                BladeCluster& cluster = out.clusters[c];
                 const int firstId = static_cast<int>(out.blades.size()) + 1;
                 auto blades = params.partition == PartitionMethod::StemGraph
                                   ? seg::partitionByStem(cluster, mask, depth_mm, params, firstId,
-                                                         out.plantBase_px, r)
+                                                         out.plantBase_px, plantStem_px, r)
                                   : seg::partitionCluster(cluster, mask, depth_mm,
                                                           out.edgeRaggedness, params, firstId, r);
+                if (plantStem_px.empty()) plantStem_px = cluster.stemLine_px;
                 if (params.partition != PartitionMethod::StemGraph)
                     seg::flagCutCrossings(blades, cluster, mask, depth_mm, params);
                 seg::flagBlades(blades, cluster, mask.size(), sensed, params, out.edgeRaggedness);

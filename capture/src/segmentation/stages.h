@@ -215,10 +215,13 @@ void flagCutCrossings(std::span<BladeContour> blades, const BladeCluster& cluste
 // base (where it meets the stem) round its tip and back. Sets the cluster's stemLine_px.
 // `plantBase` (when known, from PlantFinding::Clusters): where the plant stands; the stem is
 // sought from the skeleton's pixel nearest that point rather than from the cluster's lowest
-// point, which on a plant of drooping leaves is a leaf's tip.
+// point, which on a plant of drooping leaves is a leaf's tip. `plantStem_px` (frame coordinates,
+// may be empty): the stem another cluster of the same plant holds; a cluster without a stem of
+// its own (a leaf cut off from the rest) bases its leaves by it.
 std::vector<BladeContour> partitionByStem(BladeCluster& cluster, const cv::Mat1b& mask,
                                           const cv::Mat1w& depth_mm, const SegmenterParams& params,
                                           int firstId, const std::optional<cv::Point2f>& plantBase,
+                                          const std::vector<cv::Point>& plantStem_px,
                                           StageReport& report);
 // fork_partition.cpp: the pixels of the fork zone (between each blade's two valleys and the base
 // point) re-decided by the blades' centre lines continued to the base and by depth. Box

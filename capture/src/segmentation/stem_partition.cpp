@@ -179,6 +179,7 @@ std::vector<cv::Mat1b> sharesOfRegion(const cv::Mat1b& region, const cv::Mat1b& 
 std::vector<BladeContour> partitionByStem(BladeCluster& cluster, const cv::Mat1b& mask,
                                           const cv::Mat1w& depth_mm, const SegmenterParams& params,
                                           int firstId, const std::optional<cv::Point2f>& plantBase,
+                                          const std::vector<cv::Point>& plantStem_px,
                                           StageReport& report) {
     const cv::Point2f footInFrame = plantBase.value_or(cluster.basePoint_px);
     std::optional<ClusterSkeleton> skeletonOf =
@@ -211,9 +212,13 @@ std::vector<BladeContour> partitionByStem(BladeCluster& cluster, const cv::Mat1b
             strands.strands[static_cast<std::size_t>(i)].path(graph);
         stemLine.insert(stemLine.end(), path.begin(), path.end());
     }
+    // Leaves go by the stem they leave, though it lies in another cluster.
+    std::vector<cv::Point> baseBy = stemLine;
+    if (baseBy.empty())
+        for (const cv::Point& p : plantStem_px) baseBy.push_back(p - box.tl());
     for (std::size_t i = 0; i < strands.strands.size(); ++i) {
         if (isStem[i]) continue;
-        LeafStrand leaf = leafOf(graph, strands.strands[i], foot, stemLine);
+        LeafStrand leaf = leafOf(graph, strands.strands[i], foot, baseBy);
         if (static_cast<float>(leaf.path.size()) < params.minLeafBranch_px) continue;
         // Where the plant stands is known (the top of its pot): what lies wholly below it is
         // the pot's rim or the ground, not a leaf; leaves leave the stem above it.
