@@ -8,7 +8,6 @@
 // from a stem this way; Fan & Sheng's contour partition assumes blades fanning from one base,
 // which a stem breaks.
 #include <algorithm>
-#include <limits>
 #include <opencv2/imgproc.hpp>
 
 #include "segmentation/cluster_skeleton.h"
@@ -29,11 +28,9 @@ struct LeafStrand {
     bool endMeetsAnother = false;  // its far end meets another leaf or the stem, not free
 };
 
-// The image distance from `p` to the nearest pixel of `line` (infinite for an empty line).
+// The image distance from `p` to the nearest pixel of `line` (not empty).
 double distanceTo(cv::Point p, const std::vector<cv::Point>& line) {
-    double nearest = std::numeric_limits<double>::infinity();
-    for (const cv::Point& q : line) nearest = std::min(nearest, cv::norm(p - q));
-    return nearest;
+    return cv::norm(line[static_cast<std::size_t>(nearestPointIndex(line, p))] - p);
 }
 
 LeafStrand leafOf(const SkeletonGraph& graph, const Strand& s, cv::Point2f plantFoot,
