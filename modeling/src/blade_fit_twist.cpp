@@ -154,11 +154,12 @@ TwistFit fitTwist(const Skeleton& skeleton, const BladeFrame& frame,
         use[j] = 1;
     }
     float lo = 1.f, hi = 0.f;
+    int reads = 0;
     for (std::size_t j = 0; j < n; ++j)
-        if (use[j]) lo = std::min(lo, s[j]), hi = std::max(hi, s[j]);
+        if (use[j]) lo = std::min(lo, s[j]), hi = std::max(hi, s[j]), ++reads;
+    if (reads < kMinTwistPoints || hi - lo < kMinTwistSpread) return out;
     unwrapAboutCircularLine(angle, s, use);
     Line line = fitLine(s, angle, use);
-    if (line.points < kMinTwistPoints || hi - lo < kMinTwistSpread) return out;
     const double cut = std::max<double>(kOutlierRms * line.rms, kMinOutlier_rad);
     for (std::size_t j = 0; j < n; ++j)
         if (use[j] && std::abs(angle[j] - (line.intercept + line.slope * s[j])) > cut) use[j] = 0;
