@@ -87,6 +87,17 @@ TEST(StemPartition, TheStemsShareHoldsTheStemAndNoLeaf) {
     }
 }
 
+// The blade that covers `through` starts (its contour's first point) nearer `base` than `tip`.
+void expectBladeThroughStartsByItsBase(const Segmentation& seg, cv::Point through, cv::Point base,
+                                       cv::Point tip) {
+    const auto it = std::find_if(seg.blades.begin(), seg.blades.end(),
+                                 [&](const BladeContour& b) { return b.covers(through); });
+    ASSERT_NE(it, seg.blades.end()) << seg.summary();
+    const cv::Point from = it->contour_px.front();
+    EXPECT_LT(cv::norm(from - base), cv::norm(from - tip)) << "the blade starts at " << from << "\n"
+                                                           << seg.summary();
+}
+
 // A leaf arching over from beside the stem (its base hidden there, so its skeleton ends free)
 // comes to rest with its tip on the lowest leaf. Its base is the end by the stem, not the end
 // that meets another leaf: modelled the other way round, a meadow would plant it by its tip.
@@ -95,13 +106,7 @@ TEST(StemPartition, ALeafWhoseTipRestsOnAnotherHasItsBaseByTheStem) {
     const cv::Point base(88, 125), arch(65, 95), tip(48, 118);
     const std::vector<cv::Point> leaf{base, arch, {52, 98}, tip};
     cv::polylines(mask, std::vector<std::vector<cv::Point>>{leaf}, false, 255, 7);
-    const Segmentation seg = segmentByStem(mask);
-    const auto it = std::find_if(seg.blades.begin(), seg.blades.end(),
-                                 [&](const BladeContour& b) { return b.covers(arch); });
-    ASSERT_NE(it, seg.blades.end()) << seg.summary();
-    const cv::Point from = it->contour_px.front();
-    EXPECT_LT(cv::norm(from - base), cv::norm(from - tip)) << "the blade starts at " << from << "\n"
-                                                           << seg.summary();
+    expectBladeThroughStartsByItsBase(segmentByStem(mask), arch, base, tip);
 }
 
 // A leaf cut off from the plant (its base hidden: a region of its own) arches out and hangs its
@@ -113,12 +118,7 @@ TEST(StemPartition, ALeafInARegionOfItsOwnIsBasedByThePlantsStem) {
     cv::polylines(mask, std::vector<std::vector<cv::Point>>{{base, arch, tip}}, false, 255, 7);
     const Segmentation seg = segmentByStem(mask);
     ASSERT_EQ(seg.clusters.size(), 2u) << seg.summary();
-    const auto it = std::find_if(seg.blades.begin(), seg.blades.end(),
-                                 [&](const BladeContour& b) { return b.covers(arch); });
-    ASSERT_NE(it, seg.blades.end()) << seg.summary();
-    const cv::Point from = it->contour_px.front();
-    EXPECT_LT(cv::norm(from - base), cv::norm(from - tip)) << "the blade starts at " << from << "\n"
-                                                           << seg.summary();
+    expectBladeThroughStartsByItsBase(seg, arch, base, tip);
 }
 
 TEST(StemPartition, SpursOfTheEdgeAreNoLeaves) {
