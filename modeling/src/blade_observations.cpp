@@ -21,6 +21,22 @@ std::string overlayName(int frameIndex) {
     return name;
 }
 
+// Why `a` is a piece of a leaf rather than a blade ("" when it is blade-shaped): its length along
+// the spine under `minLengthToWidth` times its widest width.
+std::string tooShortForItsWidth(const Archetype& a, float minLengthToWidth) {
+    if (!(minLengthToWidth > 0.f) || a.width.width_m.empty()) return {};
+    const float widest = *std::max_element(a.width.width_m.begin(), a.width.width_m.end());
+    const float length = a.height_m();
+    if (length >= minLengthToWidth * widest) return {};
+    char why[160];
+    std::snprintf(why, sizeof why,
+                  "%s: %.0f mm long and %.0f mm wide, under %g times its width: a piece of a leaf, "
+                  "not a whole blade",
+                  kTooShortForItsWidth, length * 1e3f, widest * 1e3f,
+                  static_cast<double>(minLengthToWidth));
+    return why;
+}
+
 }  // namespace
 
 void observeGroup(const capture::GroupSegmentation& group, const CaptureOptions& options,
@@ -119,6 +135,17 @@ std::vector<TrackFit> fitTracks(const BladeObservations& observations,
             BladeFit fit =
                 fitArchetype(trackSkeleton(observations.skeletons, track, options.tracks),
                              options.fit, src, first.mask, &first.intrinsics, first.maskOrigin_px);
+            if (const std::string why =
+                    tooShortForItsWidth(fit.archetype, options.minLengthToWidth);
+                !why.empty()) {
+                if (!options.keepFlagged) {
+                    summary.skippedBy[kTooShortForItsWidth] += static_cast<int>(track.size());
+                    summary.notes.push_back("frame " + std::to_string(src.frame) + " blade " +
+                                            std::to_string(src.bladeId) + " skipped: " + why);
+                    continue;
+                }
+                fit.archetype.source.flags.push_back(why);
+            }
             fits.push_back({std::move(fit), track});
             summary.bladesModelled += static_cast<int>(track.size());
             summary.averagedArchetypes += track.size() > 1;

@@ -80,8 +80,9 @@ struct Source {
     std::string recording;  // recording folder / file name as given to capture
     int frame = -1;         // frame index in that recording (-1: unknown / authored)
     int bladeId = 0;        // BladeContour::id within that frame
-    // The segmenter's flags on the blade, one reason line each ("too-thin: mean width ..."):
-    // empty for a blade it vouched for; capture models flagged ones only with --keep-flagged.
+    // The segmenter's flags on the blade, and the fit's too-short-for-its-width, one reason line
+    // each ("too-thin: mean width ..."): empty for a blade both vouched for; capture models
+    // flagged ones only with --keep-flagged.
     std::vector<std::string> flags;
     // Every observation the archetype was fitted to, the first being (frame, bladeId): capture
     // fits a blade seen in several fused groups once, to the mean of its skeletons

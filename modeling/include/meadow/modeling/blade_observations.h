@@ -46,8 +46,12 @@ struct TrackFit {
     BladeFit fit;                    // fit.archetype is what the library keeps
     std::vector<std::size_t> track;  // the views it was fitted to
 };
+// What CaptureSummary::skippedBy and a kept archetype's source flags call a fit too short for its
+// width (CaptureOptions::minLengthToWidth).
+inline constexpr const char* kTooShortForItsWidth = "too-short-for-its-width";
+
 // One archetype per track, fitted to the mean of its skeletons, named by its first view;
-// failures are noted in `summary`, not thrown.
+// failures, and fits too short for their width, are noted in `summary`, not thrown.
 std::vector<TrackFit> fitTracks(const BladeObservations& observations,
                                 const std::vector<std::vector<std::size_t>>& tracks,
                                 const CaptureOptions& options, const std::string& sourceName,

@@ -26,7 +26,12 @@ struct CaptureOptions {
     int maxFrames = 0;         // stop after this many frames; 0 = the whole source
     int maxArchetypes = 0;     // merge near-duplicates down to this many; 0 = keep every blade
     bool keepFlagged = false;  // also model blades the segmenter flagged (overlap, curl, ...)
-    BladeTrackParams tracks;   // one archetype per blade across groups (enabled = false: per group)
+    // An archetype shorter along its spine than this many times its widest width is a piece of a
+    // leaf (cut where it crosses another or meets the stem), not a blade: it is not kept, unless
+    // keepFlagged (then its source lists why). Grass leaves are many times longer than wide.
+    // 0 = keep every shape.
+    float minLengthToWidth = 2.f;
+    BladeTrackParams tracks;  // one archetype per blade across groups (enabled = false: per group)
     std::filesystem::path debugDir;  // overlay PNG per segmentation when not empty
 };
 
