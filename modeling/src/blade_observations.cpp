@@ -21,11 +21,16 @@ std::string overlayName(int frameIndex) {
     return name;
 }
 
+// How the notes name a blade: "frame 3 blade 2".
+std::string bladeName(int frame, int bladeId) {
+    return "frame " + std::to_string(frame) + " blade " + std::to_string(bladeId);
+}
+
 // Why `a` is a piece of a leaf rather than a blade ("" when it is blade-shaped): its length along
 // the spine under `minLengthToWidth` times its widest width.
 std::string tooShortForItsWidth(const Archetype& a, float minLengthToWidth) {
-    if (!(minLengthToWidth > 0.f) || a.width.width_m.empty()) return {};
-    const float widest = *std::max_element(a.width.width_m.begin(), a.width.width_m.end());
+    if (!(minLengthToWidth > 0.f)) return {};
+    const float widest = a.width.maxWidth_m();
     const float length = a.height_m();
     if (length >= minLengthToWidth * widest) return {};
     char why[160];
@@ -70,8 +75,7 @@ void observeGroup(const capture::GroupSegmentation& group, const CaptureOptions&
     for (std::size_t index = 0; index < seg.blades.size(); ++index) {
         const capture::BladeContour& blade = seg.blades[index];
         ++summary.bladesFound;
-        const std::string where =
-            "frame " + std::to_string(frameIndex) + " blade " + std::to_string(blade.id);
+        const std::string where = bladeName(frameIndex, blade.id);
         const bool flagged =
             std::any_of(blade.flags.begin(), blade.flags.end(), disqualifiesFromModelling);
         if (flagged && !options.keepFlagged) {
@@ -140,8 +144,7 @@ std::vector<TrackFit> fitTracks(const BladeObservations& observations,
                 !why.empty()) {
                 if (!options.keepFlagged) {
                     summary.skippedBy[kTooShortForItsWidth] += static_cast<int>(track.size());
-                    summary.notes.push_back("frame " + std::to_string(src.frame) + " blade " +
-                                            std::to_string(src.bladeId) + " skipped: " + why);
+                    summary.notes.push_back(bladeName(src.frame, src.bladeId) + " skipped: " + why);
                     continue;
                 }
                 fit.archetype.source.flags.push_back(why);
@@ -150,8 +153,7 @@ std::vector<TrackFit> fitTracks(const BladeObservations& observations,
             summary.bladesModelled += static_cast<int>(track.size());
             summary.averagedArchetypes += track.size() > 1;
         } catch (const ModelingError& e) {
-            summary.notes.push_back("frame " + std::to_string(src.frame) + " blade " +
-                                    std::to_string(src.bladeId) + " (seen in " +
+            summary.notes.push_back(bladeName(src.frame, src.bladeId) + " (seen in " +
                                     std::to_string(track.size()) +
                                     " group(s)) not modelled: " + e.what());
         }

@@ -4,8 +4,6 @@
 // pointing at the camera, short in the image, is kept.
 #include <gtest/gtest.h>
 
-#include <algorithm>
-
 #include "meadow/modeling/blade_observations.h"
 #include "meadow/modeling/capture_pipeline.h"
 
@@ -44,9 +42,7 @@ BladeObservations threeViews() {
 
 const std::vector<std::vector<std::size_t>> kOneTrackEach{{0}, {1}, {2}};
 
-float lengthToWidth(const Archetype& a) {
-    return a.height_m() / *std::max_element(a.width.width_m.begin(), a.width.width_m.end());
-}
+float lengthToWidth(const Archetype& a) { return a.height_m() / a.width.maxWidth_m(); }
 
 std::vector<int> bladeIds(const std::vector<TrackFit>& fits) {
     std::vector<int> ids;
