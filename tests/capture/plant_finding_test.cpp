@@ -224,6 +224,25 @@ TEST(PlantFindingScenes, APieceOfThePlantWithABroadBaseHighAboveTheFloorJoinsIt)
     EXPECT_NEAR(seg.plantBase_px->y, 240.f + 0.18f * k.fy_px, 6.f);
 }
 
+// The plant's pot is taken off the plant and outlined among what was left out, so that a user
+// sees in the overlay where the pot's cut ends; the stem above it is the plant's.
+TEST(PlantFindingScenes, ThePlantsPotIsOutlinedAsThePot) {
+    const Intrinsics k = Intrinsics::kinectV1();
+    const Strip pot{-0.06f, 0.06f, 0.18f, 0.3f, 1.f}, stem{-0.01f, 0.01f, -0.35f, 0.18f, 1.f};
+    const Segmentation seg =
+        findIn(castScene(k, {kFloor, kWallAhead}, std::vector<Strip>{pot, stem, kLeaf}));
+    ASSERT_FALSE(seg.noPlant) << seg.noBladesReason;
+    const auto at = [&](float y_m) {
+        return cv::Point2f(k.cx_px, k.cy_px + k.fy_px * y_m);  // on the axis, 1 m away
+    };
+    const auto potOutline = std::find_if(seg.leftOut.begin(), seg.leftOut.end(),
+                                         [](const LeftOutObject& o) { return o.why == "pot"; });
+    ASSERT_NE(potOutline, seg.leftOut.end());
+    EXPECT_GT(cv::pointPolygonTest(potOutline->outline_px, at(0.24f), false), 0) << "its middle";
+    EXPECT_LT(cv::pointPolygonTest(potOutline->outline_px, at(0.1f), false), 0) << "the stem";
+    EXPECT_GT(seg.clusterMask(at(0.1f)), 0) << "the stem is the plant's";
+}
+
 // A broad leaf hanging before the stem, 2.5 cm nearer and 2.5 cm to the side, is the piece
 // nearest the view's centre; the rest of the plant (pot, stem, a leaf reaching left) lies off
 // to the left. The rest is larger and stands in the pot: it is the plant the piece belongs to,

@@ -41,6 +41,8 @@ constexpr float kPotStandsWithin_m = 0.2f;
 // plant covers at least.
 constexpr std::size_t kMaxLeftOut = 12;
 constexpr int kLeftOutShareOfPlant = 8;
+// What the plant's own pot is called where it is outlined among the objects left out.
+constexpr const char* kPotWhy = "pot";
 // What a user whose plant is thin but only too small (over half a plant's pixels) should do.
 constexpr const char* kBringCloser = ": bring the camera closer if it is the plant";
 // Beyond the distances the guide tests (docs/capture.md, up to 1.2 m) a broad-leaved plant's
@@ -75,6 +77,19 @@ bool runsOffTop(const cv::Mat1b& mask, const SensedExtent& sensed) {
     return columns >= kMinColumns;
 }
 
+// The outer contour of `mask`'s largest part, frame pixels; empty for an empty mask.
+std::vector<cv::Point> largestOutline(const cv::Mat1b& mask) {
+    const cv::Rect box = cv::boundingRect(mask);
+    if (box.empty()) return {};
+    std::vector<std::vector<cv::Point>> contours;
+    cv::findContours(mask(box).clone(), contours, cv::RETR_EXTERNAL, cv::CHAIN_APPROX_SIMPLE,
+                     box.tl());
+    if (contours.empty()) return {};
+    return *std::max_element(contours.begin(), contours.end(), [](const auto& a, const auto& b) {
+        return cv::contourArea(a) < cv::contourArea(b);
+    });
+}
+
 // The objects not taken for the plant's (`joined` 0) and at least `minArea_px` large, largest
 // first and at most kMaxLeftOut of them (a room leaves dozens), each outlined, pot and all, with
 // its tag.
@@ -90,17 +105,8 @@ std::vector<LeftOutObject> leftOutObjects(const std::vector<Cluster>& clusters,
     if (order.size() > kMaxLeftOut) order.resize(kMaxLeftOut);
     std::vector<LeftOutObject> out;
     for (const std::size_t i : order) {
-        const cv::Mat1b whole = clusters[i].mask | clusters[i].pot;
-        const cv::Rect box = cv::boundingRect(whole);
-        std::vector<std::vector<cv::Point>> contours;
-        cv::findContours(whole(box).clone(), contours, cv::RETR_EXTERNAL, cv::CHAIN_APPROX_SIMPLE,
-                         box.tl());
-        if (contours.empty()) continue;
-        out.push_back({*std::max_element(contours.begin(), contours.end(),
-                                         [](const auto& a, const auto& b) {
-                                             return cv::contourArea(a) < cv::contourArea(b);
-                                         }),
-                       tag[i]});
+        std::vector<cv::Point> outline = largestOutline(clusters[i].mask | clusters[i].pot);
+        if (!outline.empty()) out.push_back({std::move(outline), tag[i]});
     }
     return out;
 }
@@ -378,6 +384,10 @@ FoundPlant findPlant(const cv::Mat1w& depth_mm, const Intrinsics& k, const Segme
     report.notes.push_back(note.str());
     plant.found = true;
     plant.mask = c.mask;
+    // The pot is taken off the plant too: outlined, a user sees where the plant's lowest leaves
+    // went when they hang before it or crowd its rim.
+    if (std::vector<cv::Point> outline = largestOutline(pot); !outline.empty())
+        plant.leftOut.insert(plant.leftOut.begin(), {std::move(outline), kPotWhy});
     plant.base_px = footOf(c.mask, pot);
     double nearest = 0, farthest = 0;
     cv::minMaxLoc(depth_mm, &nearest, &farthest, nullptr, nullptr, c.mask);
