@@ -5,6 +5,7 @@
 #include <cmath>
 #include <glm/geometric.hpp>
 #include <optional>
+#include <sstream>
 #include <string>
 #include <utility>
 #include <vector>
@@ -32,6 +33,14 @@ constexpr float kBasePartFraction = 0.08f;
 constexpr float kWidthReferenceFrom = 0.15f;
 constexpr float kWidthReferenceTo = 0.35f;
 constexpr float kMillimetresPerMetre = 1000.f;
+
+// How a blade left unrooted is noted: the base point is the overlay's magenta diamond, where the
+// tuft's blades meet or, for a potted plant, its region's foot.
+constexpr const char* kNotRooted = "not rooted at the base point: ";
+
+// Whole millimetres, for notes.
+long millimetres(float metres) { return std::lround(metres * kMillimetresPerMetre); }
+
 // Columns either side of the base point searched for the cluster's lowest pixel.
 constexpr int kLowestRowHalfWidth_px = 2;
 
@@ -149,18 +158,20 @@ void rootSkeleton(Skeleton& s, const ClusterBase& base, const RootParams& params
     const glm::vec3 bladeDirection = s.points_m[static_cast<std::size_t>(k)] - lower;
     const auto refuse = [&](const std::string& why) {
         s.baseNotRooted = true;
-        s.reasons.push_back("not rooted at the tuft's base: " + why);
+        s.reasons.push_back(kNotRooted + why);
     };
     if (extension_m > params.maxExtensionFraction * length_m) {
-        refuse("it lies " + std::to_string(extension_m * kMillimetresPerMetre) +
-               " mm from the blade's lower end, more than " +
-               std::to_string(params.maxExtensionFraction) + " x the blade's visible length (" +
-               std::to_string(length_m * kMillimetresPerMetre) + " mm)");
+        std::ostringstream why;
+        why.precision(2);
+        why << "it lies " << millimetres(extension_m)
+            << " mm from the blade's lower end, more than " << params.maxExtensionFraction
+            << " x the blade's visible length (" << millimetres(length_m) << " mm)";
+        refuse(why.str());
         return;
     }
     if (glm::dot(lower - base.base_m, bladeDirection) < 0.f) {
         refuse("it lies above the blade's lower end along the blade (" +
-               std::to_string(extension_m * kMillimetresPerMetre) + " mm away)");
+               std::to_string(millimetres(extension_m)) + " mm away)");
         return;
     }
     s.baseExtension_m = extension_m;
@@ -249,8 +260,7 @@ Skeleton segmentedBladeSkeleton(const capture::Segmentation& segmentation, std::
         } else {
             skeleton.baseNotRooted = true;
             skeleton.reasons.push_back(
-                "not rooted at the tuft's base: no cluster lists the blade, or no valid depth "
-                "within " +
+                std::string(kNotRooted) + "no cluster lists the blade, or no valid depth within " +
                 std::to_string(params.root.maxDepthWindowRadius_px) + " px of its base point");
         }
     }
