@@ -133,5 +133,36 @@ TEST(LibraryScore, AnArchetypeThatDoesNotSayWhereItStoodIsRefused) {
     EXPECT_THROW((void)scoreLibrary(libraryOf({authored}), oneLeaf()), SynthError);
 }
 
+// A library over a turntable's views holds a leaf once it is matched in any of them, at its best
+// view's length: the leaf in three views, matched from 40 % up in the first and from 10 % up in
+// the second; a second leaf, shown only in the third view, is matched nowhere.
+TEST(LibraryScore, AnyViewHoldsALeafMatchedInOneViewAtItsBestLength) {
+    ScoringTruth truth = oneLeaf();
+    for (int frame : {1, 2}) {
+        TruthView view = truth.views.front();
+        view.frame = frame;
+        view.labels = view.labels.clone();
+        truth.views.push_back(view);
+    }
+    TruthLeaf other = truth.views[2].leaves.front();
+    other.id = kLeafLabel + 1;
+    for (glm::vec3& p : other.line) p.x += 0.2f;  // 20 cm to the side
+    truth.views[2].leaves.push_back(other);
+    const auto from = [](float share, int frame) {
+        modeling::Archetype a =
+            straight({0.f, kBaseY_m - share * kLength_m, kDepth_m}, {0.f, kTipY_m, kDepth_m});
+        a.source.frame = frame;
+        return a;
+    };
+    const LibraryScore s = scoreLibrary(libraryOf({from(0.4f, 0), from(0.1f, 1)}), truth);
+    EXPECT_EQ(s.leaves(), 4);
+    EXPECT_EQ(s.matched(), 2);
+    const AnyViewScore any = s.anyView();
+    EXPECT_EQ(any.leaves, 2);
+    EXPECT_EQ(any.matched, 1);
+    ASSERT_EQ(any.bestLengthError.size(), 1u);
+    EXPECT_NEAR(any.bestLengthError.front(), 0.1, 1e-3);
+}
+
 }  // namespace
 }  // namespace meadow::synth

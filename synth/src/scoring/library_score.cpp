@@ -4,7 +4,9 @@
 #include <cmath>
 #include <glm/geometric.hpp>
 #include <limits>
+#include <map>
 #include <opencv2/imgcodecs.hpp>
+#include <set>
 
 #include "meadow/core/json_reader.h"
 #include "meadow/synth/error.h"
@@ -232,6 +234,25 @@ double LibraryScore::upsideDownShare() const {
     }
     return n ? sum / static_cast<double>(n) : std::numeric_limits<double>::quiet_NaN();
 }
+AnyViewScore LibraryScore::anyView() const {
+    std::set<int> counted;
+    std::map<int, float> best;  // smallest length error per leaf matched in some view
+    for (const ViewScore& v : views) {
+        counted.insert(v.countedIds.begin(), v.countedIds.end());
+        for (std::size_t m = 0; m < v.matchedIds.size(); ++m) {
+            const auto [at, added] = best.emplace(v.matchedIds[m], v.lengthError[m]);
+            if (!added) at->second = std::min(at->second, v.lengthError[m]);
+        }
+    }
+    AnyViewScore any;
+    any.leaves = static_cast<int>(counted.size());
+    for (const auto& [id, error] : best)
+        if (counted.count(id)) {
+            ++any.matched;
+            any.bestLengthError.push_back(error);
+        }
+    return any;
+}
 double LibraryScore::meanCountError() const {
     double sum = 0;
     for (const ViewScore& v : views) sum += std::abs(v.archetypes - v.leaves);
@@ -276,6 +297,7 @@ LibraryScore scoreLibrary(const modeling::ArchetypeLibrary& library, const Scori
             const TruthLeaf& leaf = view.leaves[p.leaf];
             const modeling::Archetype& a = *mine[p.archetype];
             vs.lengthError.push_back(std::abs(a.height_m() - leaf.length_m) / leaf.length_m);
+            vs.matchedIds.push_back(leaf.id);
             if (leaf.maxWidth_m > 0.f)
                 vs.widthError.push_back(std::abs(a.width.maxWidth_m() - leaf.maxWidth_m) /
                                         leaf.maxWidth_m);
@@ -290,6 +312,7 @@ LibraryScore scoreLibrary(const modeling::ArchetypeLibrary& library, const Scori
             if (view.leaves[l].visiblePixels >= rule.minVisiblePixels) {
                 ++vs.leaves;
                 vs.matched += leafUsed[l];
+                vs.countedIds.push_back(view.leaves[l].id);
             }
         for (std::size_t a = 0; a < mine.size(); ++a)
             if (!archetypeUsed[a])

@@ -95,7 +95,18 @@ struct ViewScore {
     // Per matched leaf whose archetype spans at least kOrientedSpan of it: 1 when the archetype
     // runs from the leaf's tip side toward its base (it would be planted by its tip), else 0.
     std::vector<float> upsideDown;
+    std::vector<int> matchedIds;  // the matched leaves' label values, as lengthError
+    std::vector<int> countedIds;  // those of the leaves counted in `leaves`
     [[nodiscard]] int falseCount() const;
+};
+
+// What a library over all views holds of the plant: a leaf that overlaps others in one view may
+// stand clear in another, and a library needs each leaf once. Leaves are told apart by their
+// label value, the same in every view of one plant or tuft.
+struct AnyViewScore {
+    int leaves = 0;                      // leaves counted (minVisiblePixels) in at least one view
+    int matched = 0;                     // of them, matched in at least one view
+    std::vector<float> bestLengthError;  // per leaf matched anywhere: its smallest length error
 };
 
 struct LibraryScore {
@@ -112,6 +123,7 @@ struct LibraryScore {
     [[nodiscard]] double medianTipMissed() const;
     [[nodiscard]] double meanCountError() const;   // |archetypes in a view - leaves| per view
     [[nodiscard]] double upsideDownShare() const;  // of ViewScore::upsideDown; NaN without any
+    [[nodiscard]] AnyViewScore anyView() const;
 
 private:
     // The median of one per-match list over every view (NaN when empty).
