@@ -95,7 +95,7 @@ struct ViewScore {
     // Per matched leaf whose archetype spans at least kOrientedSpan of it: 1 when the archetype
     // runs from the leaf's tip side toward its base (it would be planted by its tip), else 0.
     std::vector<float> upsideDown;
-    std::vector<int> matchedIds;  // the matched leaves' label values, as lengthError
+    std::vector<int> matchedIds;  // the matched leaves' label values, in lengthError's order
     std::vector<int> countedIds;  // those of the leaves counted in `leaves`
     [[nodiscard]] int falseCount() const;
 };
