@@ -59,12 +59,16 @@ std::vector<GroupSegmentation> GroupSegmenter::segmentPending() {
         std::span<const DepthFrame> group = groupOf(step);
         GroupSegmentation g;
         g.segmentation = segmenter_.segment(group, tips);
-        // The run's first segmentation gives the tuft's band to test the run for motion in.
+        // The run's first segmentation gives the tuft's band to test the run for motion in, and
+        // its first frame alone the plant's pixels: fused, a turning plant's frames keep only
+        // what they share (its stem and pot), which changes least.
         if (first == firstPending && params_.checkMotion && !tips.depth_mm.empty() &&
             g.segmentation.farDepth_m > g.segmentation.nearDepth_m) {
-            const TuftMotion motion =
-                tuftMotion(run, g.segmentation.nearDepth_m, g.segmentation.farDepth_m,
-                           params_.motion, g.segmentation.clusterMask);
+            const cv::Mat1b plant =
+                group.size() > 1 ? segmenter_.segment(groupOf(1), RecurringReadings{}).clusterMask
+                                 : g.segmentation.clusterMask;
+            const TuftMotion motion = tuftMotion(run, g.segmentation.nearDepth_m,
+                                                 g.segmentation.farDepth_m, params_.motion, plant);
             motionTests_ += motion.measured;
             if (motion.moved(params_.motion)) {
                 moving = true;
