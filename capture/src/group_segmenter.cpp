@@ -1,6 +1,7 @@
 #include "meadow/capture/group_segmenter.h"
 
 #include <algorithm>
+#include <optional>
 #include <span>
 
 #include "meadow/capture/error.h"
@@ -64,11 +65,12 @@ std::vector<GroupSegmentation> GroupSegmenter::segmentPending() {
         // what they share (its stem and pot), which changes least.
         if (first == firstPending && params_.checkMotion && !tips.depth_mm.empty() &&
             g.segmentation.farDepth_m > g.segmentation.nearDepth_m) {
-            const cv::Mat1b plant =
-                group.size() > 1 ? segmenter_.segment(groupOf(1), RecurringReadings{}).clusterMask
-                                 : g.segmentation.clusterMask;
-            const TuftMotion motion = tuftMotion(run, g.segmentation.nearDepth_m,
-                                                 g.segmentation.farDepth_m, params_.motion, plant);
+            // Segmented as a moving run's frames are: alone, without recurring readings.
+            std::optional<Segmentation> firstAlone;
+            if (group.size() > 1) firstAlone = segmenter_.segment(groupOf(1), RecurringReadings{});
+            const TuftMotion motion = tuftMotion(
+                run, g.segmentation.nearDepth_m, g.segmentation.farDepth_m, params_.motion,
+                firstAlone ? firstAlone->clusterMask : g.segmentation.clusterMask);
             motionTests_ += motion.measured;
             if (motion.moved(params_.motion)) {
                 moving = true;
@@ -80,7 +82,8 @@ std::vector<GroupSegmentation> GroupSegmenter::segmentPending() {
                 tips = {};
                 step = 1;
                 group = groupOf(step);
-                g.segmentation = segmenter_.segment(group, tips);
+                g.segmentation =
+                    firstAlone ? std::move(*firstAlone) : segmenter_.segment(group, tips);
             }
         }
         g.group = groups_++;

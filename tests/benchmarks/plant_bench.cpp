@@ -64,6 +64,10 @@ struct Row {
     std::vector<float> stemError;   // |measured - true| / true stem height, one per plant
     double countError = 0.0, baselineCountError = 0.0;  // summed over views
     FrameTimes times;
+    [[nodiscard]] double recall() const { return leaves ? double(matched) / leaves : 0.0; }
+    [[nodiscard]] double anyViewRecall() const {
+        return anyViewLeaves ? double(anyViewMatched) / anyViewLeaves : 0.0;
+    }
     void add(const Row& o) {
         views += o.views, leaves += o.leaves, matched += o.matched;
         anyViewLeaves += o.anyViewLeaves, anyViewMatched += o.anyViewMatched;
@@ -181,9 +185,8 @@ std::string cells(const Row& r) {
     const FrameTimes& t = r.times;
     const double views = std::max(r.views, 1);
     std::ostringstream out;
-    out << r.views << " | " << r.leaves << " | "
-        << fixed(r.leaves ? double(r.matched) / r.leaves : 0.0, 2) << " | "
-        << fixed(r.anyViewLeaves ? double(r.anyViewMatched) / r.anyViewLeaves : 0.0, 2) << " | "
+    out << r.views << " | " << r.leaves << " | " << fixed(r.recall(), 2) << " | "
+        << fixed(r.anyViewRecall(), 2) << " | "
         << (r.bestLengthError.empty() ? "-" : fixed(100.0 * median(r.bestLengthError), 0) + " %")
         << " | ";
     double falseTotal = 0.0;
@@ -216,8 +219,7 @@ std::string csvRow(const Row& r) {
     const double views = std::max(r.views, 1);
     std::ostringstream out;
     out << r.set << ',' << r.sensor << ',' << r.finding << ',' << r.what << ',' << r.views << ','
-        << r.leaves << ',' << fixed(r.leaves ? double(r.matched) / r.leaves : 0.0, 3) << ','
-        << fixed(r.anyViewLeaves ? double(r.anyViewMatched) / r.anyViewLeaves : 0.0, 3) << ','
+        << r.leaves << ',' << fixed(r.recall(), 3) << ',' << fixed(r.anyViewRecall(), 3) << ','
         << orBlank(r.bestLengthError, median(r.bestLengthError), 3);
     for (double f : r.falseBlades) out << ',' << fixed(f / views, 3);
     out << ',' << orBlank(r.lengthError, median(r.lengthError), 3) << ','
