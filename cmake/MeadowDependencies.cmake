@@ -10,7 +10,7 @@ find_package(OpenGL REQUIRED COMPONENTS OpenGL EGL)
 # PCL through pkg-config: find_package(PCL) drags in VTK, which meadow does not use.
 pkg_check_modules(PCL REQUIRED IMPORTED_TARGET
   pcl_common pcl_sample_consensus pcl_segmentation pcl_filters pcl_features pcl_search pcl_kdtree
-  pcl_io)
+  pcl_io pcl_registration)
 find_package(Eigen3 REQUIRED NO_MODULE)
 
 # OpenNI2: Debian's libopenni2.pc names a libdir that does not hold the library, so link the

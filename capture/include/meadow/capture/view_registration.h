@@ -1,0 +1,61 @@
+#pragma once
+// Views of one plant that turned between them (a turntable, or a camera carried round it) are
+// brought into one space: each view's plant cloud is registered to the view before it, and the
+// steps chained, so that a leaf seen in several views can be told for one leaf (view_joining.h
+// in modeling). A plant on a turntable turns about an upright axis through its foot: a sweep of
+// turns about the up direction through the plant's lowest readings is scored, the best few are
+// refined by ICP (PCL), and the one that lays most readings on the other view's is kept. A pair
+// whose clouds do not come to lie on each other breaks the chain: the next view starts one of
+// its own (see docs/capture.md#turntable-views).
+#include <glm/mat4x4.hpp>
+#include <glm/vec3.hpp>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "meadow/capture/depth_frame.h"
+#include "meadow/capture/segmenter.h"
+
+namespace meadow::capture {
+
+// The plant's readings in one view (camera space, metres) and the up direction there.
+struct ViewCloud {
+    int frame = 0;
+    std::vector<glm::vec3> points_m;
+    glm::vec3 up{0.f, -1.f, 0.f};  // the ground's normal, or the image's up without a ground
+};
+
+struct ViewRegistrationParams {
+    int maxPoints = 1500;  // the view registered is thinned evenly to at most this many readings
+    float sweepRange_deg = 90.f;     // turns tried either way between two views...
+    float sweepStep_deg = 10.f;      // ...this far apart
+    float maxPairing_m = 0.03f;      // ICP pairs readings at most this far apart
+    float inlierDistance_m = 0.01f;  // a reading lies on the other view's within this
+    // A pair is registered when this share of its readings lies on the other view's: a leaf
+    // turned edge-on hides some, but below this the clouds do not share the plant.
+    float minInlierShare = 0.6f;
+    [[nodiscard]] std::string problem() const;  // empty when usable
+};
+
+// One view's place in its chain: reference = chainFromView * view (camera spaces, metres).
+struct RegisteredView {
+    int frame = 0;
+    int chain = 0;  // views of one chain share a reference, the chain's first view
+    glm::mat4 chainFromView{1.f};
+    // To the view before it (none for a chain's first view): the turn about the up direction
+    // (degrees, signed) and the share of its readings that came to lie on that view's.
+    float turn_deg = 0.f;
+    float inlierShare = 0.f;
+    std::string why;  // why a chain starts here, after its first ("" otherwise)
+};
+
+// The plant mask's readings of `frame` (the segmentation's cluster mask), with the ground's
+// normal as up when the segmentation found a ground.
+ViewCloud plantCloud(const Segmentation& segmentation, const DepthFrame& frame);
+
+// Registers each view to the one before it, in the order given. Throws CaptureError for unusable
+// params.
+std::vector<RegisteredView> registerViews(const std::vector<ViewCloud>& views,
+                                          const ViewRegistrationParams& params = {});
+
+}  // namespace meadow::capture

@@ -1,0 +1,268 @@
+// GCC 12 takes the SSE loads of Eigen's SVD in PCL's ICP (Umeyama), inlined here, for reads out of
+// bounds: a false positive in Eigen's code, which it places in the intrinsics' header, so the
+// warning is off for the whole file.
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Warray-bounds"
+#include "meadow/capture/view_registration.h"
+
+#include <pcl/console/print.h>
+#include <pcl/kdtree/kdtree_flann.h>
+#include <pcl/point_cloud.h>
+#include <pcl/point_types.h>
+#include <pcl/registration/icp.h>
+
+#include <algorithm>
+#include <cmath>
+#include <glm/geometric.hpp>
+#include <glm/gtc/matrix_transform.hpp>
+#include <glm/gtc/type_ptr.hpp>
+#include <limits>
+#include <numbers>
+#include <sstream>
+#include <tuple>
+
+#include "meadow/capture/error.h"
+
+namespace meadow::capture {
+
+namespace {
+
+constexpr float kMillimetresPerMetre = 1000.f;
+// The readings this low along up (a share of the cloud's height) are the plant's foot, which a
+// turntable turns about.
+constexpr float kFootShare = 0.1f;
+constexpr int kIcpIterations = 20;
+
+using Cloud = pcl::PointCloud<pcl::PointXYZ>;
+
+Cloud::Ptr toCloud(const std::vector<glm::vec3>& points) {
+    auto cloud = std::make_shared<Cloud>();
+    cloud->reserve(points.size());
+    for (const glm::vec3& p : points) cloud->push_back({p.x, p.y, p.z});
+    return cloud;
+}
+
+// The mean of the readings lowest along `up`: where the plant stands.
+glm::vec3 footOf(const std::vector<glm::vec3>& points, const glm::vec3& up) {
+    std::vector<float> heights;
+    heights.reserve(points.size());
+    for (const glm::vec3& p : points) heights.push_back(glm::dot(p, up));
+    const auto [low, high] = std::minmax_element(heights.begin(), heights.end());
+    const float limit = *low + kFootShare * (*high - *low);
+    glm::vec3 sum{0.f};
+    int n = 0;
+    for (std::size_t i = 0; i < points.size(); ++i)
+        if (heights[i] <= limit) sum += points[i], ++n;
+    return sum / static_cast<float>(std::max(n, 1));
+}
+
+// A turn of `angle_deg` about the axis along `up` through `pivot`.
+glm::mat4 turnAbout(const glm::vec3& pivot, const glm::vec3& up, float angle_deg) {
+    return glm::translate(glm::mat4(1.f), pivot) *
+           glm::rotate(glm::mat4(1.f), glm::radians(angle_deg), up) *
+           glm::translate(glm::mat4(1.f), -pivot);
+}
+
+Eigen::Matrix4f toEigen(const glm::mat4& m) {
+    Eigen::Matrix4f e;
+    for (int r = 0; r < 4; ++r)
+        for (int c = 0; c < 4; ++c) e(r, c) = m[c][r];
+    return e;
+}
+
+glm::mat4 toGlm(const Eigen::Matrix4f& e) {
+    glm::mat4 m;
+    for (int r = 0; r < 4; ++r)
+        for (int c = 0; c < 4; ++c) m[c][r] = e(r, c);
+    return m;
+}
+
+// The turn a rigid motion makes about `up` (degrees): the angle its rotation takes a direction
+// across `up` through, seen along `up`.
+float turnAngle_deg(const glm::mat4& motion, const glm::vec3& up) {
+    glm::vec3 across = glm::cross(up, glm::vec3(1.f, 0.f, 0.f));
+    if (glm::length(across) < 0.1f) across = glm::cross(up, glm::vec3(0.f, 0.f, 1.f));
+    across = glm::normalize(across);
+    glm::vec3 turned = glm::vec3(motion * glm::vec4(across, 0.f));
+    turned -= glm::dot(turned, up) * up;
+    const float angle =
+        std::atan2(glm::dot(glm::cross(across, turned), up), glm::dot(across, turned));
+    return glm::degrees(angle);
+}
+
+struct PairFit {
+    glm::mat4 targetFromSource{1.f};
+    float inlierShare = 0.f;
+    float meanResidual_m = 0.f;
+};
+
+// The share of `source` that lies within params.inlierDistance_m of the target once moved by
+// `motion`, every `stride`-th reading, and those readings' mean distance there.
+std::pair<float, float> lyingOn(const Cloud& source, const glm::mat4& motion,
+                                const pcl::KdTreeFLANN<pcl::PointXYZ>& targetTree,
+                                const ViewRegistrationParams& params, std::size_t stride = 1) {
+    std::vector<int> index(1);
+    std::vector<float> squared(1);
+    const float inlier2 = params.inlierDistance_m * params.inlierDistance_m;
+    int inliers = 0, tried = 0;
+    double residual = 0.0;
+    for (std::size_t i = 0; i < source.size(); i += stride, ++tried) {
+        const glm::vec3 p =
+            glm::vec3(motion * glm::vec4(source[i].x, source[i].y, source[i].z, 1.f));
+        if (targetTree.nearestKSearch(pcl::PointXYZ(p.x, p.y, p.z), 1, index, squared) < 1)
+            continue;
+        if (squared[0] <= inlier2) ++inliers, residual += std::sqrt(squared[0]);
+    }
+    return {tried ? static_cast<float>(inliers) / static_cast<float>(tried) : 0.f,
+            inliers ? static_cast<float>(residual / inliers) : 0.f};
+}
+
+// The sweep's turn that lays most of the source on the target, refined by ICP. Each search in
+// PCL's kd-tree costs an OpenMP region in FLANN, so the sweep is scored on a sample and only the
+// best turn is refined.
+PairFit registerPair(const ViewCloud& source, const ViewCloud& target,
+                     const ViewRegistrationParams& params) {
+    // The source thinned evenly, the target whole: a reading of the source that lies on the
+    // plant then finds one of the target's within the sensor's own spacing.
+    const std::size_t thinning = std::max<std::size_t>(
+        1, (source.points_m.size() + params.maxPoints - 1) / params.maxPoints);
+    std::vector<glm::vec3> thinned;
+    for (std::size_t i = 0; i < source.points_m.size(); i += thinning)
+        thinned.push_back(source.points_m[i]);
+    const Cloud::Ptr sourceCloud = toCloud(thinned);
+    const Cloud::Ptr targetCloud = toCloud(target.points_m);
+    pcl::KdTreeFLANN<pcl::PointXYZ> targetTree;
+    targetTree.setInputCloud(targetCloud);
+
+    const glm::vec3 up = glm::normalize(target.up);
+    const glm::vec3 pivot = footOf(target.points_m, up);
+    constexpr std::size_t kSweepSamples = 400;
+    const std::size_t stride = std::max<std::size_t>(1, sourceCloud->size() / kSweepSamples);
+    std::vector<std::pair<float, glm::mat4>> turns;
+    const int steps = static_cast<int>(std::floor(params.sweepRange_deg / params.sweepStep_deg));
+    for (int k = -steps; k <= steps; ++k) {
+        const glm::mat4 turn = turnAbout(pivot, up, static_cast<float>(k) * params.sweepStep_deg);
+        turns.emplace_back(lyingOn(*sourceCloud, turn, targetTree, params, stride).first, turn);
+    }
+    // Before ICP a turn near the true one can still score below a wrong one that lays the stem
+    // on the stem: the best few are refined.
+    constexpr std::size_t kRefined = 3;
+    const std::size_t refined = std::min(kRefined, turns.size());
+    std::partial_sort(turns.begin(), turns.begin() + static_cast<std::ptrdiff_t>(refined),
+                      turns.end(), [](const auto& a, const auto& b) { return a.first > b.first; });
+
+    pcl::IterativeClosestPoint<pcl::PointXYZ, pcl::PointXYZ> icp;
+    icp.setInputTarget(targetCloud);
+    icp.setInputSource(sourceCloud);
+    icp.setMaxCorrespondenceDistance(params.maxPairing_m);
+    icp.setMaximumIterations(kIcpIterations);
+    icp.setTransformationEpsilon(1e-8);
+    PairFit best;
+    best.inlierShare = -1.f;
+    for (std::size_t i = 0; i < refined; ++i) {
+        Cloud aligned;
+        icp.align(aligned, toEigen(turns[i].second));
+        PairFit fit;
+        fit.targetFromSource = toGlm(icp.getFinalTransformation());
+        std::tie(fit.inlierShare, fit.meanResidual_m) =
+            lyingOn(*sourceCloud, fit.targetFromSource, targetTree, params);
+        if (fit.inlierShare > best.inlierShare) best = fit;
+    }
+    return best;
+}
+
+std::string percent(float share) {
+    return std::to_string(static_cast<int>(std::lround(share * 100.f))) + " %";
+}
+
+}  // namespace
+
+std::string ViewRegistrationParams::problem() const {
+    std::ostringstream why;
+    if (maxPoints < 10)
+        why << "maxPoints " << maxPoints << " is below 10";
+    else if (!(sweepStep_deg > 0.f) || !(sweepRange_deg >= 0.f) || sweepRange_deg > 180.f)
+        why << "the sweep (" << sweepRange_deg << " deg by " << sweepStep_deg
+            << " deg) is not a range within 180 deg and a positive step";
+    else if (!(maxPairing_m > 0.f) || !(inlierDistance_m > 0.f))
+        why << "pairing and inlier distances must be positive";
+    else if (!(minInlierShare >= 0.f && minInlierShare <= 1.f))
+        why << "minInlierShare " << minInlierShare << " is not within 0 to 1";
+    return why.str();
+}
+
+ViewCloud plantCloud(const Segmentation& segmentation, const DepthFrame& frame) {
+    ViewCloud view;
+    view.frame = frame.index;
+    if (segmentation.groundPlane) {
+        const cv::Vec4f& g = *segmentation.groundPlane;
+        view.up = glm::normalize(glm::vec3(g[0], g[1], g[2]));
+    }
+    const cv::Mat1b& mask = segmentation.clusterMask;
+    if (mask.empty() || mask.size() != frame.depth_mm.size()) return view;
+    const int nearest_mm =
+        static_cast<int>(std::floor(segmentation.tuftNearest_m * kMillimetresPerMetre));
+    const int farthest_mm =
+        segmentation.tuftFarthest_m > 0.f
+            ? static_cast<int>(std::ceil(segmentation.tuftFarthest_m * kMillimetresPerMetre))
+            : std::numeric_limits<int>::max();
+    std::vector<cv::Point> pixels;
+    for (int y = 0; y < mask.rows; ++y)
+        for (int x = 0; x < mask.cols; ++x) {
+            const int d = frame.depth_mm(y, x);
+            if (mask(y, x) && d > 0 && d >= nearest_mm && d <= farthest_mm)
+                pixels.emplace_back(x, y);
+        }
+    for (const cv::Point p : pixels)
+        view.points_m.push_back(frame.intrinsics.backProject(
+            static_cast<float>(p.x), static_cast<float>(p.y),
+            static_cast<float>(frame.depth_mm(p)) / kMillimetresPerMetre));
+    return view;
+}
+
+std::vector<RegisteredView> registerViews(const std::vector<ViewCloud>& views,
+                                          const ViewRegistrationParams& params) {
+    if (const std::string why = params.problem(); !why.empty())
+        throw CaptureError("view registration: " + why);
+    // PCL reports on the console (ICP finding too few pairs for a view of something else);
+    // registration reports through RegisteredView::why.
+    pcl::console::setVerbosityLevel(pcl::console::L_ALWAYS);
+    std::vector<RegisteredView> out;
+    constexpr std::size_t kMinPoints = 10;
+    for (std::size_t i = 0; i < views.size(); ++i) {
+        RegisteredView r;
+        r.frame = views[i].frame;
+        if (i == 0) {
+            out.push_back(r);
+            continue;
+        }
+        const RegisteredView& before = out.back();
+        if (views[i].points_m.size() < kMinPoints || views[i - 1].points_m.size() < kMinPoints) {
+            r.chain = before.chain + 1;
+            r.why =
+                "too few plant readings to register (" +
+                std::to_string(std::min(views[i].points_m.size(), views[i - 1].points_m.size())) +
+                " in one of the two views, " + std::to_string(kMinPoints) + " needed)";
+            out.push_back(r);
+            continue;
+        }
+        const PairFit fit = registerPair(views[i], views[i - 1], params);
+        r.inlierShare = fit.inlierShare;
+        r.turn_deg = turnAngle_deg(fit.targetFromSource, glm::normalize(views[i - 1].up));
+        if (fit.inlierShare < params.minInlierShare) {
+            r.chain = before.chain + 1;
+            r.why = "only " + percent(fit.inlierShare) + " of its plant readings came to lie on " +
+                    "frame " + std::to_string(before.frame) + "'s (" +
+                    percent(params.minInlierShare) + " needed)";
+        } else {
+            r.chain = before.chain;
+            r.chainFromView = before.chainFromView * fit.targetFromSource;
+        }
+        out.push_back(r);
+    }
+    return out;
+}
+
+}  // namespace meadow::capture
+
+#pragma GCC diagnostic pop

@@ -1,0 +1,109 @@
+// A turning plant's views registered to one another (view_registration.h).
+#include "meadow/capture/view_registration.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <glm/geometric.hpp>
+#include <glm/gtc/matrix_transform.hpp>
+
+#include "meadow/capture/error.h"
+
+namespace meadow::capture {
+namespace {
+
+// The camera's up (image up is -Y), and the turntable's axis 0.8 m before the camera.
+const glm::vec3 kUp{0.f, -1.f, 0.f};
+const glm::vec3 kAxis{0.f, 0.1f, 0.8f};
+
+// A plant standing on the axis, as a dense cloud: a 0.3 m stem and five leaves leaving it at
+// different heights and azimuths, each arching 0.12-0.2 m out and down, 1.5 cm wide.
+std::vector<glm::vec3> plant() {
+    std::vector<glm::vec3> points;
+    for (int i = 0; i <= 150; ++i) points.push_back(kAxis + kUp * (0.3f * i / 150.f));
+    for (int leaf = 0; leaf < 5; ++leaf) {
+        const float azimuth = glm::radians(70.f * leaf + 10.f);
+        const glm::vec3 out{std::cos(azimuth), 0.f, std::sin(azimuth)};
+        const glm::vec3 side = glm::cross(kUp, out);
+        const float reach = 0.12f + 0.02f * leaf;
+        const glm::vec3 base = kAxis + kUp * (0.08f + 0.05f * leaf);
+        for (int i = 0; i <= 60; ++i) {
+            const float s = static_cast<float>(i) / 60.f;
+            const glm::vec3 spine = base + out * (reach * s) + kUp * (0.1f * s - 0.12f * s * s);
+            for (int w = -3; w <= 3; ++w) points.push_back(spine + side * (0.0025f * w));
+        }
+    }
+    return points;
+}
+
+// The plant turned by `angle_deg` about the axis (a turntable's view).
+ViewCloud turnedView(int frame, float angle_deg) {
+    const glm::mat4 turn = glm::translate(glm::mat4(1.f), kAxis) *
+                           glm::rotate(glm::mat4(1.f), glm::radians(angle_deg), kUp) *
+                           glm::translate(glm::mat4(1.f), -kAxis);
+    ViewCloud view;
+    view.frame = frame;
+    view.up = kUp;
+    for (const glm::vec3& p : plant()) view.points_m.emplace_back(turn * glm::vec4(p, 1.f));
+    return view;
+}
+
+TEST(ViewRegistration, ATurntablesViewsComeToLieOnTheFirst) {
+    std::vector<ViewCloud> views;
+    for (int k = 0; k < 4; ++k) views.push_back(turnedView(k, 30.f * k));
+    const std::vector<RegisteredView> registered = registerViews(views);
+    ASSERT_EQ(registered.size(), 4u);
+    for (int k = 1; k < 4; ++k) {
+        const RegisteredView& r = registered[static_cast<std::size_t>(k)];
+        EXPECT_EQ(r.chain, 0) << r.why;
+        EXPECT_TRUE(r.why.empty()) << r.why;
+        // The camera's view turned +30 deg, so the view is turned back by 30 deg to the one before.
+        EXPECT_NEAR(std::abs(r.turn_deg), 30.f, 1.f) << "frame " << k;
+        EXPECT_GT(r.inlierShare, 0.9f);
+        // Every reading of view k lands within 3 mm of where it stood in view 0.
+        const ViewCloud first = turnedView(0, 0.f);
+        float worst = 0.f;
+        for (std::size_t i = 0; i < views[k].points_m.size(); i += 37)
+            worst = std::max(worst, glm::distance(glm::vec3(r.chainFromView *
+                                                            glm::vec4(views[k].points_m[i], 1.f)),
+                                                  first.points_m[i]));
+        EXPECT_LT(worst, 0.003f) << "frame " << k;
+    }
+}
+
+TEST(ViewRegistration, AViewOfSomethingElseStartsAChainAndSaysWhy) {
+    ViewCloud other;  // a flat board 1.5 m away, nothing like the plant
+    other.frame = 1;
+    for (int y = 0; y < 40; ++y)
+        for (int x = 0; x < 40; ++x) other.points_m.push_back({0.01f * x, 0.01f * y, 1.5f});
+    const std::vector<RegisteredView> registered =
+        registerViews({turnedView(0, 0.f), other, turnedView(2, 60.f)});
+    ASSERT_EQ(registered.size(), 3u);
+    EXPECT_EQ(registered[1].chain, 1);
+    EXPECT_NE(registered[1].why.find("came to lie on frame 0's"), std::string::npos)
+        << registered[1].why;
+    EXPECT_EQ(registered[2].chain, 2);  // the board does not hold the plant either
+    EXPECT_EQ(registered[2].chainFromView, glm::mat4(1.f));
+}
+
+TEST(ViewRegistration, AViewWithoutPlantReadingsIsNotRegistered) {
+    ViewCloud empty;
+    empty.frame = 1;
+    const std::vector<RegisteredView> registered = registerViews({turnedView(0, 0.f), empty});
+    ASSERT_EQ(registered.size(), 2u);
+    EXPECT_EQ(registered[1].chain, 1);
+    EXPECT_NE(registered[1].why.find("too few plant readings"), std::string::npos);
+}
+
+TEST(ViewRegistration, UnusableParametersAreRefused) {
+    ViewRegistrationParams params;
+    params.sweepStep_deg = 0.f;
+    EXPECT_NE(params.problem(), "");
+    EXPECT_THROW(registerViews({}, params), CaptureError);
+    params = {};
+    params.minInlierShare = 1.5f;
+    EXPECT_NE(params.problem(), "");
+}
+
+}  // namespace
+}  // namespace meadow::capture
