@@ -56,6 +56,12 @@ json archetypeToJson(const Archetype& a) {
                    {"seen_in", json::array()}};
     for (const BladeSighting& seen : a.source.seenIn)
         j["source"]["seen_in"].push_back({{"frame", seen.frame}, {"blade_id", seen.bladeId}});
+    if (!a.source.alsoSeenIn.empty()) {
+        j["source"]["also_seen_in"] = json::array();
+        for (const BladeSighting& seen : a.source.alsoSeenIn)
+            j["source"]["also_seen_in"].push_back(
+                {{"frame", seen.frame}, {"blade_id", seen.bladeId}});
+    }
     if (a.source.placed) {
         json m = json::array();
         for (int row = 0; row < 4; ++row)
@@ -143,16 +149,19 @@ Archetype archetypeFromJson(const json& value, const std::string& path) {
                     a.source.cameraFromBlade[col][row] = m[static_cast<std::size_t>(row * 4 + col)];
             a.source.placed = true;
         }
-        if (src.has("seen_in")) {  // absent in older libraries
-            const json& seen = src.array("seen_in");
+        // Both absent in older libraries; also_seen_in absent where no view was joined.
+        for (const auto& [field, list] :
+             {std::pair{"seen_in", &a.source.seenIn}, {"also_seen_in", &a.source.alsoSeenIn}}) {
+            if (!src.has(field)) continue;
+            const json& seen = src.array(field);
             for (std::size_t i = 0; i < seen.size(); ++i) {
-                const std::string at = elementPath(src.pathOf("seen_in"), i);
+                const std::string at = elementPath(src.pathOf(field), i);
                 if (!seen[i].is_object())
                     throw JsonError(JsonError::Kind::Field, at,
                                     "must be an object with frame and blade_id");
                 const JsonReader entry(seen[i], at);
-                a.source.seenIn.push_back({entry.integer("frame", 0, kMaxCount),
-                                           entry.integer("blade_id", 0, kMaxCount)});
+                list->push_back({entry.integer("frame", 0, kMaxCount),
+                                 entry.integer("blade_id", 0, kMaxCount)});
             }
         }
     }

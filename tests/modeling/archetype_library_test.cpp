@@ -33,7 +33,8 @@ ArchetypeLibrary sampleLibrary() {
                 2,
                 3,
                 {"too-thin: mean width 1.9 px"},
-                {{2, 3}, {5, 1}}};
+                {{2, 3}, {5, 1}},
+                {{7, 2}}};
     a.knots_m = {{0, 0, 0}, {0.02f, 0.1f, 0}, {0.05f, 0.15f, -0.001f}};
     Archetype b = a;
     b.name = "grass-2";
@@ -92,6 +93,9 @@ TEST(ArchetypeLibrary, WriteThenReadIsIdentity) {
             EXPECT_EQ(a.source.seenIn[k].frame, b.source.seenIn[k].frame);
             EXPECT_EQ(a.source.seenIn[k].bladeId, b.source.seenIn[k].bladeId);
         }
+        ASSERT_EQ(b.source.alsoSeenIn.size(), 1u);
+        EXPECT_EQ(b.source.alsoSeenIn[0].frame, 7);
+        EXPECT_EQ(b.source.alsoSeenIn[0].bladeId, 2);
         EXPECT_EQ(a.knots_m, b.knots_m);
     }
     ASSERT_EQ(back.merges.size(), 1u);

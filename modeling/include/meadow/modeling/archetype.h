@@ -88,6 +88,9 @@ struct Source {
     // fits a blade seen in several fused groups once, to the mean of its skeletons
     // (blade_tracks.h). Empty for an authored archetype.
     std::vector<BladeSighting> seenIn;
+    // Other views of the same leaf of a turning plant, whose archetypes lay along this one and
+    // came out shorter: left out of the library for this one (view_joining.h). Empty otherwise.
+    std::vector<BladeSighting> alsoSeenIn{};
     // Where the blade stood: camera = cameraFromBlade * blade-local (rigid, metres, the
     // recording's camera space). Unplaced for an authored archetype.
     bool placed = false;
