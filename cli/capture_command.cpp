@@ -135,6 +135,12 @@ void runCapture(CaptureArgs& args) {
                   << "): those frames were segmented one by one, without recurring readings, and "
                      "modelled one "
                      "archetype per group (--assume-still takes every run for still)\n";
+    if (s.turningViews > 1)
+        std::cout << "a turning plant: " << s.registeredViews << " of " << s.turningViews - 1
+                  << " view(s) registered to the one before (" << s.viewChains << " chain(s)), "
+                  << s.joinedArchetypes
+                  << " archetype(s) left out for a longer one of the same leaf (--per-group "
+                     "keeps every view's)\n";
     if (const auto& stem = result.library.stem) {
         std::ostringstream height;
         height.precision(2);
@@ -203,6 +209,11 @@ Reference: docs/cli.md (options), docs/capture.md (how it works, capturing your 
     cmd->add_flag_callback(
            "--assume-still", [args] { args->options.groups.checkMotion = false; },
            "Take every run of frames for a still plant (no motion test)")
+        ->group(frames);
+    cmd->add_flag("--turntable", args->options.groups.turning,
+                  "Every frame is a view of a turning plant: each segmented alone, the views "
+                  "registered and each leaf kept once")
+        ->excludes("--assume-still")
         ->group(frames);
 
     const char* segmentation = "Segmentation";

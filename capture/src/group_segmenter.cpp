@@ -48,10 +48,11 @@ std::vector<GroupSegmentation> GroupSegmenter::segmentPending() {
     if (pending_ == 0) return out;
     const std::vector<DepthFrame>& run = recent_;
     RecurringReadings tips = recurringOfRun(run);
-    bool moving = false;
+    bool moving = params_.turning;
+    if (moving) tips = {};
     const auto fusion = static_cast<std::size_t>(params_.fusionFrames);
     const std::size_t firstPending = run.size() - pending_;
-    std::size_t step = fusion;
+    std::size_t step = moving ? 1 : fusion;
     for (std::size_t first = firstPending; first < run.size(); first += step) {
         const auto groupOf = [&](std::size_t frames) {
             return std::span<const DepthFrame>(run).subspan(first,
@@ -63,7 +64,7 @@ std::vector<GroupSegmentation> GroupSegmenter::segmentPending() {
         // The run's first segmentation gives the tuft's band to test the run for motion in, and
         // its first frame alone the plant's pixels: fused, a turning plant's frames keep only
         // what they share (its stem and pot), which changes least.
-        if (first == firstPending && params_.checkMotion && !tips.depth_mm.empty() &&
+        if (first == firstPending && params_.checkMotion && !moving && !tips.depth_mm.empty() &&
             g.segmentation.farDepth_m > g.segmentation.nearDepth_m) {
             // Segmented as a moving run's frames are: alone, without recurring readings.
             std::optional<Segmentation> firstAlone;

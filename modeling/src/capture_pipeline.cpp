@@ -1,6 +1,7 @@
 #include "meadow/modeling/capture_pipeline.h"
 
 #include <algorithm>
+#include <sstream>
 #include <string_view>
 
 #include "meadow/modeling/archetype_merge.h"
@@ -59,6 +60,34 @@ int framesToRead(const capture::DepthSource& source, int maxFrames) {
     return total > 0 ? std::min(total, maxFrames) : maxFrames;
 }
 
+// Registers a turning plant's views and joins each leaf's archetypes into its longest.
+void joinTurningViews(const std::vector<capture::ViewCloud>& turning, const CaptureOptions& options,
+                      CaptureResult& result) {
+    CaptureSummary& summary = result.summary;
+    result.turningViews = capture::registerViews(turning, options.registration);
+    const std::vector<capture::RegisteredView>& views = result.turningViews;
+    summary.turningViews = static_cast<int>(views.size());
+    summary.viewChains = views.empty() ? 0 : views.back().chain + 1;
+    for (std::size_t i = 1; i < views.size(); ++i) {
+        const capture::RegisteredView& v = views[i];
+        const std::string frame = "frame " + std::to_string(v.frame);
+        if (!v.why.empty()) {
+            summary.notes.push_back(frame + ": not registered to frame " +
+                                    std::to_string(views[i - 1].frame) + ": " + v.why);
+            continue;
+        }
+        ++summary.registeredViews;
+        std::ostringstream note;
+        note.precision(0);
+        note << std::fixed << frame << ": turned " << v.turn_deg << " deg from frame "
+             << views[i - 1].frame << ", " << v.inlierShare * 100.f
+             << " % of its plant readings on that frame's";
+        summary.notes.push_back(note.str());
+    }
+    summary.joinedArchetypes =
+        joinSameLeafAcrossViews(result.library.archetypes, views, options.joining);
+}
+
 }  // namespace
 
 std::string skippedSummary(const CaptureSummary& summary) {
@@ -86,9 +115,13 @@ CaptureResult captureArchetypes(capture::DepthSource& source, const std::string&
 
     BladeObservations observations;
     std::vector<float> stemHeights_m;
+    std::vector<capture::ViewCloud> turning;  // the moving runs' plant clouds, group by group
+    const bool joinViews = options.tracks.enabled && options.groups.turning;
     const auto observe = [&](const std::vector<capture::GroupSegmentation>& segmented) {
         for (const capture::GroupSegmentation& group : segmented) {
             observeGroup(group, options, observations, summary);
+            if (joinViews && group.moving)
+                turning.push_back(capture::plantCloud(group.segmentation, group.frames.front()));
             if (const auto height = stemHeight_m(group.segmentation, group.frames.front()))
                 stemHeights_m.push_back(*height);
         }
@@ -111,6 +144,8 @@ CaptureResult captureArchetypes(capture::DepthSource& source, const std::string&
     for (TrackFit& fitted : fitTracks(observations, trackObservations(observations, options.tracks),
                                       options, sourceName, summary))
         result.library.archetypes.push_back(std::move(fitted.fit.archetype));
+
+    if (turning.size() >= 2) joinTurningViews(turning, options, result);
 
     if (summary.framesRead == 0) throw ModelingError("capture: " + sourceName + " has no frames");
     if (result.library.archetypes.empty())

@@ -106,6 +106,30 @@ TEST(PlantSynthCli, ATurntableRecordingIsCapturedFrameByFrame) {
         EXPECT_NE(c.output.find("segmented one by one"), std::string::npos) << subject << "\n"
                                                                             << c.output;
     }
+    // Told it is a turntable, capture registers the views and leaves out the archetypes of a leaf
+    // another view shows longer: fewer than frame by frame, the kept ones naming the views they
+    // stand for.
+    const fs::path perView = dir / "per_view.json", joined = dir / "joined.json";
+    ASSERT_EQ(
+        runMeadow("capture " + rec.string() + " --subject potted-plant --fuse 1 --per-group " +
+                  "--out " + perView.string())
+            .exitCode,
+        0);
+    const auto t =
+        runMeadow("capture " + rec.string() +
+                  " --subject potted-plant --turntable --verbose --out " + joined.string());
+    ASSERT_EQ(t.exitCode, 0) << t.output;
+    // Most views are registered (9 of 11 when measured), each to the one before it.
+    const std::size_t at = t.output.find("a turning plant: ");
+    ASSERT_NE(at, std::string::npos) << t.output;
+    EXPECT_GE(std::stoi(t.output.substr(at + 17)), 8) << t.output;
+    EXPECT_NE(t.output.find("frame 3: turned "), std::string::npos) << t.output;
+    const auto eachView = meadow::modeling::loadArchetypeLibrary(perView);
+    const auto library = meadow::modeling::loadArchetypeLibrary(joined);
+    EXPECT_LT(library.archetypes.size(), eachView.archetypes.size());
+    std::size_t standsFor = 0;
+    for (const auto& a : library.archetypes) standsFor += a.source.alsoSeenIn.size();
+    EXPECT_EQ(library.archetypes.size() + standsFor, eachView.archetypes.size());
 }
 
 TEST(PlantSynthCli, WhatCannotWorkIsOneLineAndExitCodeTwo) {

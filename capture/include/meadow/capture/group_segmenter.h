@@ -25,6 +25,9 @@ struct GroupingParams {
     int recurringFrames = 12;
     RecurringParams recurring;
     bool checkMotion = true;  // false: every run is taken for still
+    // Every frame is a view of a turning plant (a turntable): segmented alone, as a moving run's
+    // frames are, without the motion test.
+    bool turning = false;
     MotionParams motion;
 
     // Empty when usable; otherwise what is wrong.

@@ -16,6 +16,7 @@
 #include "meadow/modeling/archetype_library.h"
 #include "meadow/modeling/blade_fit.h"
 #include "meadow/modeling/blade_tracks.h"
+#include "meadow/modeling/view_joining.h"
 
 namespace meadow::modeling {
 
@@ -32,6 +33,10 @@ struct CaptureOptions {
     // 0 = keep every shape.
     float minLengthToWidth = 2.f;
     BladeTrackParams tracks;  // one archetype per blade across groups (enabled = false: per group)
+    // The groups of moving runs (a turning plant) are registered to one another and each leaf's
+    // archetypes joined into its longest (view_joining.h), unless tracks.enabled is false.
+    capture::ViewRegistrationParams registration;
+    ViewJoinParams joining;
     std::filesystem::path debugDir;  // overlay PNG per segmentation when not empty
 };
 
@@ -39,14 +44,21 @@ struct CaptureSummary {
     int framesRead = 0;
     int segmentations = 0;
     int bladesFound = 0;
-    int bladesModelled = 0;                  // observations behind the library's archetypes
-    int averagedArchetypes = 0;              // archetypes fitted to two or more observations
-    int emptySegmentations = 0;              // segmentations that found no blade
-    int noPlantSegmentations = 0;            // of them, those that saw no plant at all
-    std::string noPlant;                     // the first one's reason ("no plant in view: ...")
-    int motionTests = 0;                     // runs tested for motion (GroupingParams::checkMotion)
-    int movingRuns = 0;                      // of them, runs in which the tuft moved
-    std::string motion;                      // the first moving run's measurement, for the CLI
+    int bladesModelled = 0;        // observations behind the library's archetypes
+    int averagedArchetypes = 0;    // archetypes fitted to two or more observations
+    int emptySegmentations = 0;    // segmentations that found no blade
+    int noPlantSegmentations = 0;  // of them, those that saw no plant at all
+    std::string noPlant;           // the first one's reason ("no plant in view: ...")
+    int motionTests = 0;           // runs tested for motion (GroupingParams::checkMotion)
+    int movingRuns = 0;            // of them, runs in which the tuft moved
+    std::string motion;            // the first moving run's measurement, for the CLI
+    // A turning plant's views (moving runs' groups): how many were registered to the view before
+    // them, in how many chains, and how many archetypes were joined into a longer one of their
+    // leaf; with a note per view (its turn, or why its chain broke).
+    int turningViews = 0;
+    int registeredViews = 0;
+    int viewChains = 0;
+    int joinedArchetypes = 0;
     std::map<std::string, int> skippedBy;    // flag name -> blades it kept from modelling
     std::vector<std::string> notes;          // one line per skipped blade or empty segmentation
     std::map<std::string, double> stage_ms;  // wall time of each segmentation stage, summed
@@ -60,6 +72,8 @@ std::string skippedSummary(const CaptureSummary& summary);
 struct CaptureResult {
     ArchetypeLibrary library;
     CaptureSummary summary;
+    // A turning plant's views as registered (view_registration.h); empty without one.
+    std::vector<capture::RegisteredView> turningViews;
 };
 
 // Whether a segmenter flag keeps captureArchetypes from modelling the blade (unless
