@@ -27,6 +27,7 @@
 #include "meadow/synth/synthesize.h"
 #include "plant/stem_truth.h"
 #include "plant/truth_partition.h"
+#include "plant/turntable_library.h"
 
 namespace meadow::bench {
 namespace {
@@ -137,6 +138,21 @@ modeling::ArchetypeLibrary captureEachFrame(const fs::path& recording, int frame
     return readBack;
 }
 
+// Capture as `meadow capture --turntable` runs it: each frame alone, the views registered and each
+// leaf's archetypes joined. An empty library when nothing could be modelled.
+modeling::CaptureResult captureTurntable(const fs::path& recording, const Method& method) {
+    auto source = capture::openDepthSource(recording.string());
+    modeling::CaptureOptions options;
+    options.segmenter.plantFinding = method.finding;
+    options.segmenter.partition = method.partition;
+    options.groups.turning = true;
+    try {
+        return modeling::captureArchetypes(*source, recording.string(), options);
+    } catch (const modeling::ModelingError&) {
+        return {};
+    }
+}
+
 // The rows of the truth's own leaves, each modelled as capture models a blade: carried to where
 // its true centre line starts, and as far down as the sensor read it.
 struct TruthRow {
@@ -239,7 +255,7 @@ int run(int argc, char** argv) {
     fs::path out = "docs/measurements", data = fs::path(MEADOW_SOURCE_DIR) / "../shared/data/real",
              set = fs::path(MEADOW_SOURCE_DIR) / "build/plant-bench";
     bool quick = false, reuse = false, defaultOnly = false;
-    std::string onlySensor;
+    std::string onlySensor, onlyPlant;
     for (int i = 1; i < argc; ++i) {
         const std::string arg = argv[i];
         if (arg == "--quick")
@@ -250,6 +266,8 @@ int run(int argc, char** argv) {
             defaultOnly = true;
         else if (arg == "--sensor" && i + 1 < argc)
             onlySensor = argv[++i];
+        else if (arg == "--plant" && i + 1 < argc)
+            onlyPlant = argv[++i];
         else if (arg == "--out" && i + 1 < argc)
             out = argv[++i];
         else if (arg == "--data" && i + 1 < argc)
@@ -262,7 +280,7 @@ int run(int argc, char** argv) {
             std::cerr
                 << "usage: " << argv[0]
                 << " [--out DIR] [--data DIR] [--set DIR] [--reuse-set] [--quick] [--made TEXT]\n"
-                   "       [--sensor NAME] [--default-only]\n"
+                   "       [--sensor NAME] [--plant NAME] [--default-only]\n"
                    "  --data DIR  the shared real data (default ../shared/data/real)\n"
                    "  --set DIR   where the rendered test set goes (default build/plant-bench)\n"
                    "  --reuse-set keep the views already rendered there (same plant, sensor, "
@@ -270,6 +288,7 @@ int run(int argc, char** argv) {
                    "  --quick     two plants, four views, one sensor: a smoke run\n"
                    "  --sensor NAME   that sensor's views only (kinect-v1, kinect-v2, "
                    "realsense-d435)\n"
+                   "  --plant NAME    that plant's views only (v-3-1, ..., v-12-1)\n"
                    "  --default-only  only the way --subject potted-plant sets: no other way, no "
                    "bound\n";
             return 2;
@@ -278,8 +297,14 @@ int run(int argc, char** argv) {
     std::cout << std::unitbuf;
     cv::setNumThreads(0);
     fs::create_directories(out);
-    const std::vector<std::string> plants =
-        quick ? std::vector<std::string>{"v-3-1", "v-9-1"} : kPlants;
+    std::vector<std::string> plants = quick ? std::vector<std::string>{"v-3-1", "v-9-1"} : kPlants;
+    if (!onlyPlant.empty()) {
+        if (std::find(plants.begin(), plants.end(), onlyPlant) == plants.end()) {
+            std::cerr << "plant bench: no plant named " << onlyPlant << "\n";
+            return 2;
+        }
+        plants = {onlyPlant};
+    }
     std::vector<std::string> sensors =
         quick ? std::vector<std::string>{"kinect-v1"} : synth::plantSensorNames();
     if (!onlySensor.empty()) {
@@ -313,7 +338,12 @@ int run(int argc, char** argv) {
     const auto kindName = [&](std::size_t f) {
         return f < findings.size() ? findingName(findings[f]) : std::string(truthRow(f).name);
     };
+    std::vector<TurntableRow> turntableRows;
+    const Method turntableMethod{capture::PlantFinding::Clusters,
+                                 capture::PartitionMethod::StemGraph};
     for (const std::string& sensor : haveScans ? sensors : std::vector<std::string>{}) {
+        TurntableRow turntableTotal;
+        turntableTotal.sensor = sensor, turntableTotal.plant = "all";
         std::vector<Row> totals(kinds);
         std::vector<std::vector<Row>> perPlant(kinds);
         for (const std::string& plant : plants) {
@@ -346,8 +376,20 @@ int run(int argc, char** argv) {
                           << '\n';
                 totals[f].add(row);
                 perPlant[f].push_back(row);
+                if (f < findings.size() && findings[f].name() == turntableMethod.name()) {
+                    TurntableRow t = scoreTurntable(library, captureTurntable(o.out, findings[f]),
+                                                    truth, scoring);
+                    t.sensor = sensor, t.plant = plant;
+                    std::cout << sensor << " turntable " << plant << ": " << t.registered << " of "
+                              << t.pairs << " registered, " << t.eachView.archetypes << " -> "
+                              << t.joined.archetypes << " archetypes, held " << t.eachView.held
+                              << " -> " << t.joined.held << " of " << t.leaves << '\n';
+                    turntableTotal.add(t);
+                    turntableRows.push_back(std::move(t));
+                }
             }
         }
+        if (turntableTotal.pairs > 0) turntableRows.push_back(turntableTotal);
         for (std::size_t f = 0; f < kinds; ++f) {
             rows.insert(rows.end(), perPlant[f].begin(), perPlant[f].end());
             totals[f].set = "maize", totals[f].sensor = sensor, totals[f].what = "all";
@@ -437,6 +479,7 @@ int run(int argc, char** argv) {
     for (const Row& r : rows)
         md << "| " << r.set << " | " << r.sensor << " | " << r.finding << " | "
            << (r.what == "all" ? "**all**" : r.what) << " | " << cells(r) << " |\n";
+    if (!turntableRows.empty()) md << turntableSection(turntableRows);
     writeText(out / "plant_benchmark.md", md.str());
     std::ostringstream csv;
     csv << "set,sensor,capture,plant,views,leaves,recall,recall_any_view,length_error_best_view";

@@ -1,0 +1,143 @@
+#include "plant/turntable_library.h"
+
+#include <algorithm>
+#include <cmath>
+#include <glm/geometric.hpp>
+#include <glm/mat3x3.hpp>
+#include <glm/matrix.hpp>
+#include <glm/trigonometric.hpp>
+#include <map>
+#include <set>
+#include <sstream>
+
+#include "common/report.h"
+
+namespace meadow::bench {
+namespace {
+
+template <typename T>
+void append(std::vector<T>& to, const std::vector<T>& from) {
+    to.insert(to.end(), from.begin(), from.end());
+}
+
+HeldLeaves heldLeaves(const modeling::ArchetypeLibrary& library,
+                      const synth::ScoringTruth& scoring) {
+    HeldLeaves h;
+    h.archetypes = static_cast<int>(library.archetypes.size());
+    if (library.archetypes.empty()) return h;
+    const synth::LibraryScore s = synth::scoreLibrary(library, scoring);
+    std::map<int, std::vector<float>> errorsOf;  // per matched leaf, its archetypes' errors
+    std::set<int> counted;
+    for (const synth::ViewScore& v : s.views) {
+        for (std::size_t m = 0; m < v.matchedIds.size(); ++m)
+            errorsOf[v.matchedIds[m]].push_back(v.lengthError[m]);
+        counted.insert(v.countedIds.begin(), v.countedIds.end());
+        h.falseBlades += v.falseCount();
+    }
+    // Of the leaves counted in some view (a leaf matched only where it shows few pixels too).
+    for (const auto& [id, errors] : errorsOf) {
+        h.matching += static_cast<int>(errors.size());
+        if (!counted.contains(id)) continue;
+        ++h.held;
+        h.lengthError.push_back(static_cast<float>(median(errors)));
+    }
+    return h;
+}
+
+// The angle of a rotation (degrees).
+float rotationAngle_deg(const glm::mat3& r) {
+    const float c = std::clamp((r[0][0] + r[1][1] + r[2][2] - 1.f) / 2.f, -1.f, 1.f);
+    return glm::degrees(std::acos(c));
+}
+
+std::string cellOf(const HeldLeaves& h) {
+    return std::to_string(h.archetypes) + " | " + std::to_string(h.held) + " | " +
+           std::to_string(h.matching - h.held) + " | " + std::to_string(h.falseBlades) + " | " +
+           (h.lengthError.empty() ? "-" : fixed(100.0 * median(h.lengthError), 0) + " %");
+}
+
+}  // namespace
+
+void HeldLeaves::add(const HeldLeaves& o) {
+    archetypes += o.archetypes, held += o.held, falseBlades += o.falseBlades;
+    matching += o.matching;
+    append(lengthError, o.lengthError);
+}
+
+void TurntableRow::add(const TurntableRow& o) {
+    pairs += o.pairs, registered += o.registered, leaves += o.leaves;
+    append(turnError_deg, o.turnError_deg);
+    append(offset_mm, o.offset_mm);
+    eachView.add(o.eachView);
+    joined.add(o.joined);
+}
+
+TurntableRow scoreTurntable(const modeling::ArchetypeLibrary& eachView,
+                            const modeling::CaptureResult& turntable,
+                            const synth::PlantTruth& truth, const synth::ScoringTruth& scoring) {
+    TurntableRow row;
+    std::map<int, glm::mat4> cameraFromWorld;
+    for (const synth::PlantTruthView& v : truth.views) cameraFromWorld[v.index] = v.cameraFromWorld;
+    std::map<int, const synth::TruthView*> truthView;
+    for (const synth::TruthView& v : scoring.views) truthView[v.frame] = &v;
+
+    const std::vector<capture::RegisteredView>& views = turntable.turningViews;
+    std::map<int, int> chainFirst;  // chain -> its first view's frame
+    for (std::size_t i = 0; i < views.size(); ++i) {
+        const capture::RegisteredView& v = views[i];
+        chainFirst.emplace(v.chain, v.frame);
+        if (i == 0) continue;
+        ++row.pairs;
+        if (!v.why.empty()) continue;
+        ++row.registered;
+        const glm::mat4 trueChainFromView =
+            cameraFromWorld.at(chainFirst.at(v.chain)) * glm::inverse(cameraFromWorld.at(v.frame));
+        row.turnError_deg.push_back(
+            rotationAngle_deg(glm::mat3(glm::inverse(v.chainFromView) * trueChainFromView)));
+        double sum = 0.0;
+        int n = 0;
+        if (const auto it = truthView.find(v.frame); it != truthView.end())
+            for (const synth::TruthLeaf& leaf : it->second->leaves)
+                for (const glm::vec3& p : leaf.line) {
+                    sum += glm::distance(glm::vec3(v.chainFromView * glm::vec4(p, 1.f)),
+                                         glm::vec3(trueChainFromView * glm::vec4(p, 1.f)));
+                    ++n;
+                }
+        if (n > 0) row.offset_mm.push_back(static_cast<float>(1000.0 * sum / n));
+    }
+    row.eachView = heldLeaves(eachView, scoring);
+    row.joined = heldLeaves(turntable.library, scoring);
+    if (!eachView.archetypes.empty())
+        row.leaves = synth::scoreLibrary(eachView, scoring).anyView().leaves;
+    return row;
+}
+
+std::string turntableSection(const std::vector<TurntableRow>& rows) {
+    std::ostringstream md;
+    md << "\n## A turntable as one library\n\n"
+          "`meadow capture --turntable` on the same views (clusters + stem-graph): each view "
+          "segmented alone, registered to the one before it (docs/capture.md, \"Turntable "
+          "views\"), and each leaf's archetypes joined into its longest; beside it the library "
+          "of the views captured each alone, as above. Views registered: of the views after the "
+          "first, those whose plant came to lie on the view before it (the rest start a chain of "
+          "their own). Turn error: the angle between the registered and the true turn from the "
+          "chain's first view (median); offset: how far the registration puts the view's true "
+          "leaf points from where the truth puts them (median of the views' means). Leaves: "
+          "those shown by 300 pixels in some view; held: of them, those an archetype matches; "
+          "more: archetypes matching a leaf beyond one per leaf; false: archetypes matching no "
+          "leaf; length error: per held leaf the median over its matching archetypes, median "
+          "over the leaves.\n\n"
+          "| Sensor | Plant | Views registered | Turn error (median) | Offset (median) | Leaves "
+          "| Each view: archetypes | held | more | false | length error | Turntable: archetypes | "
+          "held | more | false | length error |\n"
+          "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+    for (const TurntableRow& r : rows)
+        md << "| " << r.sensor << " | " << (r.plant == "all" ? "**all**" : r.plant) << " | "
+           << r.registered << " of " << r.pairs << " | "
+           << (r.turnError_deg.empty() ? "-" : fixed(median(r.turnError_deg), 1) + " deg") << " | "
+           << (r.offset_mm.empty() ? "-" : fixed(median(r.offset_mm), 0) + " mm") << " | "
+           << r.leaves << " | " << cellOf(r.eachView) << " | " << cellOf(r.joined) << " |\n";
+    return md.str();
+}
+
+}  // namespace meadow::bench

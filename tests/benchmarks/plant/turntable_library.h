@@ -1,0 +1,43 @@
+#pragma once
+// What a turntable gives as one library (meadow capture --turntable): its views registered to one
+// another (capture/view_registration.h) against the truth's camera poses, and its library, each
+// leaf's archetypes joined into its longest (modeling/view_joining.h), against the library of the
+// same views captured each alone.
+#include <string>
+#include <vector>
+
+#include "meadow/modeling/archetype_library.h"
+#include "meadow/modeling/capture_pipeline.h"
+#include "meadow/synth/library_score.h"
+#include "meadow/synth/plant_views.h"
+
+namespace meadow::bench {
+
+// One library's share of the plant: leaves (counted in some view) it holds, archetypes matching
+// a leaf and matching none, and per held leaf the median length error of its archetypes.
+struct HeldLeaves {
+    int archetypes = 0, held = 0, matching = 0, falseBlades = 0;
+    std::vector<float> lengthError;
+    void add(const HeldLeaves& o);
+};
+
+struct TurntableRow {
+    std::string sensor, plant;
+    int pairs = 0, registered = 0;  // views after the first, and of them those registered
+    // Per registered view: the angle between the estimated and the true turn from the chain's
+    // first view (degrees), and how far the estimate puts the view's true leaf points from where
+    // the truth puts them (mean, mm).
+    std::vector<float> turnError_deg, offset_mm;
+    int leaves = 0;  // counted in some view
+    HeldLeaves eachView, joined;
+    void add(const TurntableRow& o);
+};
+
+TurntableRow scoreTurntable(const modeling::ArchetypeLibrary& eachView,
+                            const modeling::CaptureResult& turntable,
+                            const synth::PlantTruth& truth, const synth::ScoringTruth& scoring);
+
+// The section of plant_benchmark.md: a paragraph and one row per plant and sensor, and all.
+std::string turntableSection(const std::vector<TurntableRow>& rows);
+
+}  // namespace meadow::bench
