@@ -220,45 +220,50 @@ ViewCloud plantCloud(const Segmentation& segmentation, const DepthFrame& frame) 
     return view;
 }
 
-std::vector<RegisteredView> registerViews(const std::vector<ViewCloud>& views,
-                                          const ViewRegistrationParams& params) {
+RegisteredView registerToPrevious(const ViewCloud& view, const ViewCloud& previous,
+                                  const RegisteredView& previousPlace,
+                                  const ViewRegistrationParams& params) {
     if (const std::string why = params.problem(); !why.empty())
         throw CaptureError("view registration: " + why);
     // PCL reports on the console (ICP finding too few pairs for a view of something else);
     // registration reports through RegisteredView::why.
     pcl::console::setVerbosityLevel(pcl::console::L_ALWAYS);
-    std::vector<RegisteredView> out;
     constexpr std::size_t kMinPoints = 10;
-    for (std::size_t i = 0; i < views.size(); ++i) {
-        RegisteredView r;
-        r.frame = views[i].frame;
-        if (i == 0) {
-            out.push_back(r);
-            continue;
-        }
-        const RegisteredView& before = out.back();
-        if (views[i].points_m.size() < kMinPoints || views[i - 1].points_m.size() < kMinPoints) {
-            r.chain = before.chain + 1;
-            r.why =
-                "too few plant readings to register (" +
-                std::to_string(std::min(views[i].points_m.size(), views[i - 1].points_m.size())) +
+    RegisteredView r;
+    r.frame = view.frame;
+    r.chain = previousPlace.chain + 1;  // unless registered below
+    if (view.points_m.size() < kMinPoints || previous.points_m.size() < kMinPoints) {
+        r.why = "too few plant readings to register (" +
+                std::to_string(std::min(view.points_m.size(), previous.points_m.size())) +
                 " in one of the two views, " + std::to_string(kMinPoints) + " needed)";
-            out.push_back(r);
-            continue;
-        }
-        const PairFit fit = registerPair(views[i], views[i - 1], params);
-        r.inlierShare = fit.inlierShare;
-        r.turn_deg = turnAngle_deg(fit.targetFromSource, glm::normalize(views[i - 1].up));
-        if (fit.inlierShare < params.minInlierShare) {
-            r.chain = before.chain + 1;
-            r.why = "only " + percent(fit.inlierShare) + " of its plant readings came to lie on " +
-                    "frame " + std::to_string(before.frame) + "'s (" +
-                    percent(params.minInlierShare) + " needed)";
+        return r;
+    }
+    const PairFit fit = registerPair(view, previous, params);
+    r.inlierShare = fit.inlierShare;
+    r.turn_deg = turnAngle_deg(fit.targetFromSource, glm::normalize(previous.up));
+    if (fit.inlierShare < params.minInlierShare) {
+        r.why = "only " + percent(fit.inlierShare) + " of its plant readings came to lie on " +
+                "frame " + std::to_string(previousPlace.frame) + "'s (" +
+                percent(params.minInlierShare) + " needed)";
+        return r;
+    }
+    r.chain = previousPlace.chain;
+    r.chainFromView = previousPlace.chainFromView * fit.targetFromSource;
+    return r;
+}
+
+std::vector<RegisteredView> registerViews(const std::vector<ViewCloud>& views,
+                                          const ViewRegistrationParams& params) {
+    if (const std::string why = params.problem(); !why.empty())
+        throw CaptureError("view registration: " + why);
+    std::vector<RegisteredView> out;
+    for (std::size_t i = 0; i < views.size(); ++i) {
+        if (i == 0) {
+            out.push_back({});
+            out.back().frame = views[i].frame;
         } else {
-            r.chain = before.chain;
-            r.chainFromView = before.chainFromView * fit.targetFromSource;
+            out.push_back(registerToPrevious(views[i], views[i - 1], out.back(), params));
         }
-        out.push_back(r);
     }
     return out;
 }

@@ -1,9 +1,11 @@
 #include "meadow/modeling/capture_pipeline.h"
 
 #include <algorithm>
+#include <optional>
 #include <sstream>
 #include <string_view>
 
+#include "meadow/capture/error.h"
 #include "meadow/modeling/archetype_merge.h"
 #include "meadow/modeling/blade_observations.h"
 #include "meadow/modeling/error.h"
@@ -60,11 +62,9 @@ int framesToRead(const capture::DepthSource& source, int maxFrames) {
     return total > 0 ? std::min(total, maxFrames) : maxFrames;
 }
 
-// Registers a turning plant's views and joins each leaf's archetypes into its longest.
-void joinTurningViews(const std::vector<capture::ViewCloud>& turning, const CaptureOptions& options,
-                      CaptureResult& result) {
+// Notes each registered view's turn, or why it starts a chain, and joins each leaf's archetypes.
+void joinTurningViews(const CaptureOptions& options, CaptureResult& result) {
     CaptureSummary& summary = result.summary;
-    result.turningViews = capture::registerViews(turning, options.registration);
     const std::vector<capture::RegisteredView>& views = result.turningViews;
     summary.turningViews = static_cast<int>(views.size());
     summary.viewChains = views.empty() ? 0 : views.back().chain + 1;
@@ -115,13 +115,27 @@ CaptureResult captureArchetypes(capture::DepthSource& source, const std::string&
 
     BladeObservations observations;
     std::vector<float> stemHeights_m;
-    std::vector<capture::ViewCloud> turning;  // the moving runs' plant clouds, group by group
+    // A turning plant's views are registered as they come, each to the one before: the work is
+    // spread over the frames' progress, and only the last view's cloud is kept.
     const bool joinViews = options.tracks.enabled && options.groups.turning;
+    if (const std::string why = options.registration.problem(); joinViews && !why.empty())
+        throw capture::CaptureError("capture: view registration: " + why);
+    std::optional<capture::ViewCloud> lastView;
+    const auto registerView = [&](capture::ViewCloud view) {
+        if (!lastView) {
+            result.turningViews.emplace_back().frame = view.frame;
+        } else {
+            capture::RegisteredView placed = capture::registerToPrevious(
+                view, *lastView, result.turningViews.back(), options.registration);
+            result.turningViews.push_back(std::move(placed));
+        }
+        lastView = std::move(view);
+    };
     const auto observe = [&](const std::vector<capture::GroupSegmentation>& segmented) {
         for (const capture::GroupSegmentation& group : segmented) {
             observeGroup(group, options, observations, summary);
             if (joinViews && group.moving)
-                turning.push_back(capture::plantCloud(group.segmentation, group.frames.front()));
+                registerView(capture::plantCloud(group.segmentation, group.frames.front()));
             if (const auto height = stemHeight_m(group.segmentation, group.frames.front()))
                 stemHeights_m.push_back(*height);
         }
@@ -145,7 +159,7 @@ CaptureResult captureArchetypes(capture::DepthSource& source, const std::string&
                                       options, sourceName, summary))
         result.library.archetypes.push_back(std::move(fitted.fit.archetype));
 
-    if (turning.size() >= 2) joinTurningViews(turning, options, result);
+    if (result.turningViews.size() >= 2) joinTurningViews(options, result);
 
     if (summary.framesRead == 0) throw ModelingError("capture: " + sourceName + " has no frames");
     if (result.library.archetypes.empty())

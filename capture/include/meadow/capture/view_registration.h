@@ -53,8 +53,14 @@ struct RegisteredView {
 // normal as up when the segmentation found a ground.
 ViewCloud plantCloud(const Segmentation& segmentation, const DepthFrame& frame);
 
-// Registers each view to the one before it, in the order given. Throws CaptureError for unusable
-// params.
+// Registers `view` to `previous`, placed at `previousPlace`: in its chain, or the first of a new
+// one (chain + 1) with why. Throws CaptureError for unusable params.
+RegisteredView registerToPrevious(const ViewCloud& view, const ViewCloud& previous,
+                                  const RegisteredView& previousPlace,
+                                  const ViewRegistrationParams& params = {});
+
+// Registers each view to the one before it, in the order given (registerToPrevious); the first
+// starts chain 0. Throws CaptureError for unusable params.
 std::vector<RegisteredView> registerViews(const std::vector<ViewCloud>& views,
                                           const ViewRegistrationParams& params = {});
 
