@@ -107,7 +107,7 @@ describe() {
     motion_calibration) echo "the motion test on every preset and on gentler winds" ;;
     runtime_passes) echo "physics and culling per blade, CPU reference and GPU pass" ;;
     frame_bench) echo "whole rendered frames over blade counts: all on, no collisions, no culling" ;;
-    plant_benchmark) echo "capture on real maize shoots x 12 views x 3 sensors against the truth, beside a plain leaf counter and the partition's two bounds (leaves carried to their true base, and as seen); what one library over all the views holds; the turntable registered and joined (`--turntable`); stem height error; time per frame, and of finding the plant and the partition" ;;
+    plant_benchmark) echo "capture on real maize shoots x 12 views x 3 sensors against the truth, beside a plain leaf counter and the partition's two bounds (leaves carried to their true base, and as seen); what one library over all the views holds; the turntable registered and joined (--turntable); stem height error; time per frame, and of finding the plant and the partition" ;;
     large_meadow) echo "the tiled 1 km prairie beside the per-blade meadow: frame and stage times, blades drawn and planted, tiles" ;;
     large_meadow_memory) echo "the same runs' GPU bytes, bytes per planted and drawn blade, peak resident memory" ;;
     sensor_calibration) echo "the simulated sensors' noise figures against the real Kinect recording" ;;
