@@ -188,6 +188,8 @@ std::string ViewRegistrationParams::problem() const {
         why << "pairing and inlier distances must be positive";
     else if (!(minInlierShare >= 0.f && minInlierShare <= 1.f))
         why << "minInlierShare " << minInlierShare << " is not within 0 to 1";
+    else if (fallbackViews < 0 || fallbackViews > 8)
+        why << "fallbackViews " << fallbackViews << " is not within 0 to 8";
     return why.str();
 }
 
@@ -248,24 +250,48 @@ RegisteredView registerToPrevious(const ViewCloud& view, const ViewCloud& previo
         return r;
     }
     r.chain = previousPlace.chain;
+    r.registeredTo = previousPlace.frame;
     r.chainFromView = previousPlace.chainFromView * fit.targetFromSource;
     return r;
 }
 
+ViewRegistrar::ViewRegistrar(ViewRegistrationParams params) : params_(std::move(params)) {
+    if (const std::string why = params_.problem(); !why.empty())
+        throw CaptureError("view registration: " + why);
+}
+
+const RegisteredView& ViewRegistrar::add(ViewCloud view) {
+    RegisteredView r;
+    r.frame = view.frame;
+    if (placed_.empty()) {
+        chains_ = 1;
+    } else {
+        // The view before first, then the ones before that, nearest first.
+        const std::size_t tries = recent_.size();
+        for (std::size_t back = 1; back <= tries; ++back) {
+            const ViewCloud& previous = recent_[tries - back];
+            const RegisteredView& previousPlace = placed_[placed_.size() - back];
+            RegisteredView tried = registerToPrevious(view, previous, previousPlace, params_);
+            if (tried.why.empty()) {
+                r = std::move(tried);
+                break;
+            }
+            if (back == 1) r = std::move(tried);  // its reason is the one the user reads
+        }
+        if (!r.why.empty()) r.chain = chains_++;
+    }
+    placed_.push_back(std::move(r));
+    recent_.push_back(std::move(view));
+    const auto keep = static_cast<std::size_t>(1 + std::max(0, params_.fallbackViews));
+    if (recent_.size() > keep) recent_.erase(recent_.begin());
+    return placed_.back();
+}
+
 std::vector<RegisteredView> registerViews(const std::vector<ViewCloud>& views,
                                           const ViewRegistrationParams& params) {
-    if (const std::string why = params.problem(); !why.empty())
-        throw CaptureError("view registration: " + why);
-    std::vector<RegisteredView> out;
-    for (std::size_t i = 0; i < views.size(); ++i) {
-        if (i == 0) {
-            out.push_back({});
-            out.back().frame = views[i].frame;
-        } else {
-            out.push_back(registerToPrevious(views[i], views[i - 1], out.back(), params));
-        }
-    }
-    return out;
+    ViewRegistrar registrar(params);
+    for (const ViewCloud& view : views) registrar.add(view);
+    return registrar.views();
 }
 
 }  // namespace meadow::capture

@@ -5,7 +5,6 @@
 #include <sstream>
 #include <string_view>
 
-#include "meadow/capture/error.h"
 #include "meadow/modeling/archetype_merge.h"
 #include "meadow/modeling/blade_observations.h"
 #include "meadow/modeling/error.h"
@@ -67,7 +66,8 @@ void joinTurningViews(const CaptureOptions& options, CaptureResult& result) {
     CaptureSummary& summary = result.summary;
     const std::vector<capture::RegisteredView>& views = result.turningViews;
     summary.turningViews = static_cast<int>(views.size());
-    summary.viewChains = views.empty() ? 0 : views.back().chain + 1;
+    for (const capture::RegisteredView& v : views)
+        summary.viewChains = std::max(summary.viewChains, v.chain + 1);
     for (std::size_t i = 1; i < views.size(); ++i) {
         const capture::RegisteredView& v = views[i];
         const std::string frame = "frame " + std::to_string(v.frame);
@@ -80,7 +80,7 @@ void joinTurningViews(const CaptureOptions& options, CaptureResult& result) {
         std::ostringstream note;
         note.precision(0);
         note << std::fixed << frame << ": turned " << v.turn_deg << " deg from frame "
-             << views[i - 1].frame << ", " << v.inlierShare * 100.f
+             << v.registeredTo << ", " << v.inlierShare * 100.f
              << " % of its plant readings on that frame's";
         summary.notes.push_back(note.str());
     }
@@ -115,27 +115,16 @@ CaptureResult captureArchetypes(capture::DepthSource& source, const std::string&
 
     BladeObservations observations;
     std::vector<float> stemHeights_m;
-    // A turning plant's views are registered as they come, each to the one before: the work is
-    // spread over the frames' progress, and only the last view's cloud is kept.
+    // A turning plant's views are registered as they come, each to the ones before: the work is
+    // spread over the frames' progress, and only the last few views' clouds are kept.
     const bool joinViews = options.tracks.enabled && options.groups.turning;
-    if (const std::string why = options.registration.problem(); joinViews && !why.empty())
-        throw capture::CaptureError("capture: view registration: " + why);
-    std::optional<capture::ViewCloud> lastView;
-    const auto registerView = [&](capture::ViewCloud view) {
-        if (!lastView) {
-            result.turningViews.emplace_back().frame = view.frame;
-        } else {
-            capture::RegisteredView placed = capture::registerToPrevious(
-                view, *lastView, result.turningViews.back(), options.registration);
-            result.turningViews.push_back(std::move(placed));
-        }
-        lastView = std::move(view);
-    };
+    std::optional<capture::ViewRegistrar> registrar;
+    if (joinViews) registrar.emplace(options.registration);
     const auto observe = [&](const std::vector<capture::GroupSegmentation>& segmented) {
         for (const capture::GroupSegmentation& group : segmented) {
             observeGroup(group, options, observations, summary);
             if (joinViews && group.moving)
-                registerView(capture::plantCloud(group.segmentation, group.frames.front()));
+                registrar->add(capture::plantCloud(group.segmentation, group.frames.front()));
             if (const auto height = stemHeight_m(group.segmentation, group.frames.front()))
                 stemHeights_m.push_back(*height);
         }
@@ -159,6 +148,7 @@ CaptureResult captureArchetypes(capture::DepthSource& source, const std::string&
                                       options, sourceName, summary))
         result.library.archetypes.push_back(std::move(fitted.fit.archetype));
 
+    if (registrar) result.turningViews = registrar->views();
     if (result.turningViews.size() >= 2) joinTurningViews(options, result);
 
     if (summary.framesRead == 0) throw ModelingError("capture: " + sourceName + " has no frames");

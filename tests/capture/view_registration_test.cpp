@@ -71,7 +71,7 @@ TEST(ViewRegistration, ATurntablesViewsComeToLieOnTheFirst) {
     }
 }
 
-TEST(ViewRegistration, AViewOfSomethingElseStartsAChainAndSaysWhy) {
+TEST(ViewRegistration, AViewOfSomethingElseStartsAChainAndTheNextFallsBackPastIt) {
     ViewCloud other;  // a flat board 1.5 m away, nothing like the plant
     other.frame = 1;
     for (int y = 0; y < 40; ++y)
@@ -80,10 +80,21 @@ TEST(ViewRegistration, AViewOfSomethingElseStartsAChainAndSaysWhy) {
         registerViews({turnedView(0, 0.f), other, turnedView(2, 60.f)});
     ASSERT_EQ(registered.size(), 3u);
     EXPECT_EQ(registered[1].chain, 1);
+    EXPECT_EQ(registered[1].registeredTo, -1);
     EXPECT_NE(registered[1].why.find("came to lie on frame 0's"), std::string::npos)
         << registered[1].why;
-    EXPECT_EQ(registered[2].chain, 2);  // the board does not hold the plant either
-    EXPECT_EQ(registered[2].chainFromView, glm::mat4(1.f));
+    // The plant, turned 60 deg, does not lie on the board but on the view before that.
+    EXPECT_EQ(registered[2].chain, 0) << registered[2].why;
+    EXPECT_EQ(registered[2].registeredTo, 0);
+    EXPECT_NEAR(std::abs(registered[2].turn_deg), 60.f, 1.f);
+
+    // Without falling back, it starts a chain of its own.
+    ViewRegistrationParams params;
+    params.fallbackViews = 0;
+    const std::vector<RegisteredView> alone =
+        registerViews({turnedView(0, 0.f), other, turnedView(2, 60.f)}, params);
+    EXPECT_EQ(alone[2].chain, 2);
+    EXPECT_EQ(alone[2].chainFromView, glm::mat4(1.f));
 }
 
 TEST(ViewRegistration, AViewWithoutPlantReadingsIsNotRegistered) {
@@ -103,6 +114,9 @@ TEST(ViewRegistration, UnusableParametersAreRefused) {
     params = {};
     params.minInlierShare = 1.5f;
     EXPECT_NE(params.problem(), "");
+    params = {};
+    params.fallbackViews = -1;
+    EXPECT_THROW(ViewRegistrar{params}, CaptureError);
 }
 
 }  // namespace

@@ -34,6 +34,9 @@ struct ViewRegistrationParams {
     // A pair is registered when this share of its readings lies on the other view's: a leaf
     // turned edge-on hides some, but below this the clouds do not share the plant.
     float minInlierShare = 0.6f;
+    // A view that does not lie on the one before is tried on as many views before that (a leaf
+    // turned edge-on in one view breaks no chain); 0: the view before only.
+    int fallbackViews = 2;
     [[nodiscard]] std::string problem() const;  // empty when usable
 };
 
@@ -42,8 +45,10 @@ struct RegisteredView {
     int frame = 0;
     int chain = 0;  // views of one chain share a reference, the chain's first view
     glm::mat4 chainFromView{1.f};
-    // To the view before it (none for a chain's first view): the turn about the up direction
-    // (degrees, signed) and the share of its readings that came to lie on that view's.
+    // The view it was registered to (-1: none, a chain's first view), the turn about the up
+    // direction from it (degrees, signed) and the share of its readings that came to lie on
+    // that view's.
+    int registeredTo = -1;
     float turn_deg = 0.f;
     float inlierShare = 0.f;
     std::string why;  // why a chain starts here, after its first ("" otherwise)
@@ -59,8 +64,23 @@ RegisteredView registerToPrevious(const ViewCloud& view, const ViewCloud& previo
                                   const RegisteredView& previousPlace,
                                   const ViewRegistrationParams& params = {});
 
-// Registers each view to the one before it, in the order given (registerToPrevious); the first
-// starts chain 0. Throws CaptureError for unusable params.
+// Views registered one at a time as they come: each to the view before it, or failing that to
+// up to params.fallbackViews views before that (their chain's), or else the first of a new chain
+// with the reason it did not lie on the view before. Keeps the last few views' clouds only.
+class ViewRegistrar {
+public:
+    explicit ViewRegistrar(ViewRegistrationParams params = {});  // throws CaptureError if unusable
+    const RegisteredView& add(ViewCloud view);
+    [[nodiscard]] const std::vector<RegisteredView>& views() const { return placed_; }
+
+private:
+    ViewRegistrationParams params_;
+    std::vector<RegisteredView> placed_;
+    std::vector<ViewCloud> recent_;  // the last 1 + fallbackViews views, oldest first
+    int chains_ = 0;
+};
+
+// ViewRegistrar over the views in the order given. Throws CaptureError for unusable params.
 std::vector<RegisteredView> registerViews(const std::vector<ViewCloud>& views,
                                           const ViewRegistrationParams& params = {});
 
