@@ -212,7 +212,7 @@ Reference: docs/cli.md (options), docs/capture.md (how it works, capturing your 
         ->group(frames);
     cmd->add_flag("--turntable", args->options.groups.turning,
                   "Every frame is a view of a turning plant: each segmented alone, the views "
-                  "registered and each leaf kept once")
+                  "registered, and a leaf's archetypes another view shows longer left out")
         ->excludes("--assume-still")
         ->group(frames);
 
