@@ -19,7 +19,6 @@
 #include <limits>
 #include <numbers>
 #include <sstream>
-#include <tuple>
 
 #include "meadow/capture/error.h"
 
@@ -93,33 +92,30 @@ float turnAngle_deg(const glm::mat4& motion, const glm::vec3& up) {
 struct PairFit {
     glm::mat4 targetFromSource{1.f};
     float inlierShare = 0.f;
-    float meanResidual_m = 0.f;
 };
 
-// The share of `source` that lies within params.inlierDistance_m of the target once moved by
-// `motion`, every `stride`-th reading, and those readings' mean distance there.
-std::pair<float, float> lyingOn(const Cloud& source, const glm::mat4& motion,
-                                const pcl::KdTreeFLANN<pcl::PointXYZ>& targetTree,
-                                const ViewRegistrationParams& params, std::size_t stride = 1) {
+// The share of `source`, every `stride`-th reading, that lies within params.inlierDistance_m of
+// the target once moved by `motion`.
+float lyingOn(const Cloud& source, const glm::mat4& motion,
+              const pcl::KdTreeFLANN<pcl::PointXYZ>& targetTree,
+              const ViewRegistrationParams& params, std::size_t stride = 1) {
     std::vector<int> index(1);
     std::vector<float> squared(1);
     const float inlier2 = params.inlierDistance_m * params.inlierDistance_m;
     int inliers = 0, tried = 0;
-    double residual = 0.0;
     for (std::size_t i = 0; i < source.size(); i += stride, ++tried) {
         const glm::vec3 p =
             glm::vec3(motion * glm::vec4(source[i].x, source[i].y, source[i].z, 1.f));
         if (targetTree.nearestKSearch(pcl::PointXYZ(p.x, p.y, p.z), 1, index, squared) < 1)
             continue;
-        if (squared[0] <= inlier2) ++inliers, residual += std::sqrt(squared[0]);
+        if (squared[0] <= inlier2) ++inliers;
     }
-    return {tried ? static_cast<float>(inliers) / static_cast<float>(tried) : 0.f,
-            inliers ? static_cast<float>(residual / inliers) : 0.f};
+    return tried ? static_cast<float>(inliers) / static_cast<float>(tried) : 0.f;
 }
 
 // The sweep's turn that lays most of the source on the target, refined by ICP. Each search in
 // PCL's kd-tree costs an OpenMP region in FLANN, so the sweep is scored on a sample and only the
-// best turn is refined.
+// best few turns are refined.
 PairFit registerPair(const ViewCloud& source, const ViewCloud& target,
                      const ViewRegistrationParams& params) {
     // The source thinned evenly, the target whole: a reading of the source that lies on the
@@ -142,7 +138,7 @@ PairFit registerPair(const ViewCloud& source, const ViewCloud& target,
     const int steps = static_cast<int>(std::floor(params.sweepRange_deg / params.sweepStep_deg));
     for (int k = -steps; k <= steps; ++k) {
         const glm::mat4 turn = turnAbout(pivot, up, static_cast<float>(k) * params.sweepStep_deg);
-        turns.emplace_back(lyingOn(*sourceCloud, turn, targetTree, params, stride).first, turn);
+        turns.emplace_back(lyingOn(*sourceCloud, turn, targetTree, params, stride), turn);
     }
     // Before ICP a turn near the true one can still score below a wrong one that lays the stem
     // on the stem: the best few are refined.
@@ -164,8 +160,7 @@ PairFit registerPair(const ViewCloud& source, const ViewCloud& target,
         icp.align(aligned, toEigen(turns[i].second));
         PairFit fit;
         fit.targetFromSource = toGlm(icp.getFinalTransformation());
-        std::tie(fit.inlierShare, fit.meanResidual_m) =
-            lyingOn(*sourceCloud, fit.targetFromSource, targetTree, params);
+        fit.inlierShare = lyingOn(*sourceCloud, fit.targetFromSource, targetTree, params);
         if (fit.inlierShare > best.inlierShare) best = fit;
     }
     return best;
