@@ -3,7 +3,8 @@
 // test set in the build folder (meadow synth --plant's files, not committed); today's capture
 // run on each view alone; its library scored against the truth (synth/library_score.h) beside
 // the plain leaf counter (synth/leaf_counter.h); the synthetic tuft presets scored the same way.
-// Writes plant_benchmark.md and .csv into --out. Run by tools/measure.sh.
+// Writes plant_benchmark.md and .csv, and plant_turntable.csv (the .md's turntable section), into
+// --out. Run by tools/measure.sh.
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -491,6 +492,7 @@ int run(int argc, char** argv) {
            "count_error,capture_ms,finding_ms,partition_ms\n";
     for (const Row& r : rows) csv << csvRow(r) << '\n';
     writeText(out / "plant_benchmark.csv", csv.str());
+    if (!turntableRows.empty()) writeText(out / "plant_turntable.csv", turntableCsv(turntableRows));
     return 0;
 }
 

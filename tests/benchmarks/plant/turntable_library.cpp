@@ -127,7 +127,7 @@ std::string turntableSection(const std::vector<TurntableRow>& rows) {
           "those shown by 300 pixels in some view; held: of them, those an archetype matches; "
           "more: archetypes matching a leaf beyond one per leaf; false: archetypes matching no "
           "leaf; length error: per held leaf the median over its matching archetypes, median "
-          "over the leaves.\n\n"
+          "over the leaves. The rows are also in plant_turntable.csv.\n\n"
           "| Sensor | Plant | Views registered | Turn error (median) | Offset (median) | Leaves "
           "| Each view: archetypes | held | more | false | length error | Turntable: archetypes | "
           "held | more | false | length error |\n"
@@ -139,6 +139,25 @@ std::string turntableSection(const std::vector<TurntableRow>& rows) {
            << (r.offset_mm.empty() ? "-" : fixed(median(r.offset_mm), 0) + " mm") << " | "
            << r.leaves << " | " << cellOf(r.eachView) << " | " << cellOf(r.joined) << " |\n";
     return md.str();
+}
+
+std::string turntableCsv(const std::vector<TurntableRow>& rows) {
+    std::ostringstream csv;
+    csv << "sensor,plant,pairs,registered,turn_error_deg_median,offset_mm_median,leaves";
+    for (const char* library : {"each_view", "turntable"})
+        csv << ',' << library << "_archetypes," << library << "_held," << library << "_more,"
+            << library << "_false," << library << "_length_error_median";
+    csv << '\n';
+    for (const TurntableRow& r : rows) {
+        csv << r.sensor << ',' << r.plant << ',' << r.pairs << ',' << r.registered << ','
+            << orBlank(r.turnError_deg, median(r.turnError_deg), 2) << ','
+            << orBlank(r.offset_mm, median(r.offset_mm), 1) << ',' << r.leaves;
+        for (const HeldLeaves* h : {&r.eachView, &r.joined})
+            csv << ',' << h->archetypes << ',' << h->held << ',' << h->matching - h->held << ','
+                << h->falseBlades << ',' << orBlank(h->lengthError, median(h->lengthError), 3);
+        csv << '\n';
+    }
+    return csv.str();
 }
 
 }  // namespace meadow::bench

@@ -39,5 +39,7 @@ TurntableRow scoreTurntable(const modeling::ArchetypeLibrary& eachView,
 
 // The section of plant_benchmark.md: a paragraph and one row per plant and sensor, and all.
 std::string turntableSection(const std::vector<TurntableRow>& rows);
+// The same rows as CSV (plant_turntable.csv), with a header line.
+std::string turntableCsv(const std::vector<TurntableRow>& rows);
 
 }  // namespace meadow::bench
