@@ -47,9 +47,9 @@ std::vector<GroupSegmentation> GroupSegmenter::segmentPending() {
     std::vector<GroupSegmentation> out;
     if (pending_ == 0) return out;
     const std::vector<DepthFrame>& run = recent_;
-    RecurringReadings tips = recurringOfRun(run);
+    // A turning plant's frames are segmented alone, without recurring readings.
     bool moving = params_.turning;
-    if (moving) tips = {};
+    RecurringReadings tips = moving ? RecurringReadings{} : recurringOfRun(run);
     const auto fusion = static_cast<std::size_t>(params_.fusionFrames);
     const std::size_t firstPending = run.size() - pending_;
     std::size_t step = moving ? 1 : fusion;

@@ -15,9 +15,7 @@
 #include <cmath>
 #include <glm/geometric.hpp>
 #include <glm/gtc/matrix_transform.hpp>
-#include <glm/gtc/type_ptr.hpp>
 #include <limits>
-#include <numbers>
 #include <sstream>
 
 #include "meadow/capture/error.h"
@@ -170,6 +168,35 @@ std::string percent(float share) {
     return std::to_string(static_cast<int>(std::lround(share * 100.f))) + " %";
 }
 
+// `view` registered to `previous`, placed at `previousPlace`: in its chain, or with why not.
+RegisteredView registerToPrevious(const ViewCloud& view, const ViewCloud& previous,
+                                  const RegisteredView& previousPlace,
+                                  const ViewRegistrationParams& params) {
+    constexpr std::size_t kMinPoints = 10;
+    RegisteredView r;
+    r.frame = view.frame;
+    r.chain = previousPlace.chain + 1;  // unless registered below
+    if (view.points_m.size() < kMinPoints || previous.points_m.size() < kMinPoints) {
+        r.why = "too few plant readings to register (" +
+                std::to_string(std::min(view.points_m.size(), previous.points_m.size())) +
+                " in one of the two views, " + std::to_string(kMinPoints) + " needed)";
+        return r;
+    }
+    const PairFit fit = registerPair(view, previous, params);
+    r.inlierShare = fit.inlierShare;
+    r.turn_deg = turnAngle_deg(fit.targetFromSource, glm::normalize(previous.up));
+    if (fit.inlierShare < params.minInlierShare) {
+        r.why = "only " + percent(fit.inlierShare) + " of its plant readings came to lie on " +
+                "frame " + std::to_string(previousPlace.frame) + "'s (" +
+                percent(params.minInlierShare) + " needed)";
+        return r;
+    }
+    r.chain = previousPlace.chain;
+    r.registeredTo = previousPlace.frame;
+    r.chainFromView = previousPlace.chainFromView * fit.targetFromSource;
+    return r;
+}
+
 }  // namespace
 
 std::string ViewRegistrationParams::problem() const {
@@ -217,42 +244,12 @@ ViewCloud plantCloud(const Segmentation& segmentation, const DepthFrame& frame) 
     return view;
 }
 
-RegisteredView registerToPrevious(const ViewCloud& view, const ViewCloud& previous,
-                                  const RegisteredView& previousPlace,
-                                  const ViewRegistrationParams& params) {
-    if (const std::string why = params.problem(); !why.empty())
+ViewRegistrar::ViewRegistrar(ViewRegistrationParams params) : params_(std::move(params)) {
+    if (const std::string why = params_.problem(); !why.empty())
         throw CaptureError("view registration: " + why);
     // PCL reports on the console (ICP finding too few pairs for a view of something else);
     // registration reports through RegisteredView::why.
     pcl::console::setVerbosityLevel(pcl::console::L_ALWAYS);
-    constexpr std::size_t kMinPoints = 10;
-    RegisteredView r;
-    r.frame = view.frame;
-    r.chain = previousPlace.chain + 1;  // unless registered below
-    if (view.points_m.size() < kMinPoints || previous.points_m.size() < kMinPoints) {
-        r.why = "too few plant readings to register (" +
-                std::to_string(std::min(view.points_m.size(), previous.points_m.size())) +
-                " in one of the two views, " + std::to_string(kMinPoints) + " needed)";
-        return r;
-    }
-    const PairFit fit = registerPair(view, previous, params);
-    r.inlierShare = fit.inlierShare;
-    r.turn_deg = turnAngle_deg(fit.targetFromSource, glm::normalize(previous.up));
-    if (fit.inlierShare < params.minInlierShare) {
-        r.why = "only " + percent(fit.inlierShare) + " of its plant readings came to lie on " +
-                "frame " + std::to_string(previousPlace.frame) + "'s (" +
-                percent(params.minInlierShare) + " needed)";
-        return r;
-    }
-    r.chain = previousPlace.chain;
-    r.registeredTo = previousPlace.frame;
-    r.chainFromView = previousPlace.chainFromView * fit.targetFromSource;
-    return r;
-}
-
-ViewRegistrar::ViewRegistrar(ViewRegistrationParams params) : params_(std::move(params)) {
-    if (const std::string why = params_.problem(); !why.empty())
-        throw CaptureError("view registration: " + why);
 }
 
 const RegisteredView& ViewRegistrar::add(ViewCloud view) {

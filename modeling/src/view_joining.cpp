@@ -17,8 +17,8 @@ namespace {
 
 constexpr int kSpineSamples = 17;
 
-}  // namespace
-
+// An archetype's spine in its chain's space (RegisteredView::chainFromView), base to tip; empty
+// when it is not placed.
 std::vector<glm::vec3> spineInChain(const Archetype& archetype,
                                     const capture::RegisteredView& view) {
     if (!archetype.source.placed) return {};
@@ -31,6 +31,8 @@ std::vector<glm::vec3> spineInChain(const Archetype& archetype,
     }
     return spine;
 }
+
+}  // namespace
 
 int joinSameLeafAcrossViews(std::vector<Archetype>& archetypes,
                             const std::vector<capture::RegisteredView>& views,

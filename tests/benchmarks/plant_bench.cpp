@@ -39,11 +39,6 @@ const std::vector<std::string> kPlants{"v-3-1", "v-3-2", "v-6-1", "v-6-2", "v-9-
 const std::vector<std::string> kTuftPresets{"quadratic-leaf", "shrub-leaf", "bamboo-leaf",
                                             "sharp-tip", "slim-grass"};
 
-template <typename T>
-void append(std::vector<T>& to, const std::vector<T>& from) {
-    to.insert(to.end(), from.begin(), from.end());
-}
-
 // Per frame: all of capture; finding the plant (depth band, plane removal, plant finding);
 // cutting it into blades (partition).
 struct FrameTimes {

@@ -22,6 +22,11 @@ double median(std::vector<T> v) {
 }
 
 template <class T>
+void append(std::vector<T>& to, const std::vector<T>& from) {
+    to.insert(to.end(), from.begin(), from.end());
+}
+
+template <class T>
 double mean(const std::vector<T>& v) {
     if (v.empty()) return 0.0;
     double sum = 0.0;

@@ -15,11 +15,6 @@
 namespace meadow::bench {
 namespace {
 
-template <typename T>
-void append(std::vector<T>& to, const std::vector<T>& from) {
-    to.insert(to.end(), from.begin(), from.end());
-}
-
 HeldLeaves heldLeaves(const modeling::ArchetypeLibrary& library,
                       const synth::ScoringTruth& scoring) {
     HeldLeaves h;
@@ -41,6 +36,7 @@ HeldLeaves heldLeaves(const modeling::ArchetypeLibrary& library,
         ++h.held;
         h.lengthError.push_back(static_cast<float>(median(errors)));
     }
+    h.counted = static_cast<int>(counted.size());
     return h;
 }
 
@@ -60,7 +56,7 @@ std::string cellOf(const HeldLeaves& h) {
 
 void HeldLeaves::add(const HeldLeaves& o) {
     archetypes += o.archetypes, held += o.held, falseBlades += o.falseBlades;
-    matching += o.matching;
+    matching += o.matching, counted += o.counted;
     append(lengthError, o.lengthError);
 }
 
@@ -107,8 +103,7 @@ TurntableRow scoreTurntable(const modeling::ArchetypeLibrary& eachView,
     }
     row.eachView = heldLeaves(eachView, scoring);
     row.joined = heldLeaves(turntable.library, scoring);
-    if (!eachView.archetypes.empty())
-        row.leaves = synth::scoreLibrary(eachView, scoring).anyView().leaves;
+    row.leaves = row.eachView.counted;
     return row;
 }
 

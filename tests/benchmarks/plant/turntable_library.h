@@ -17,6 +17,7 @@ namespace meadow::bench {
 // a leaf and matching none, and per held leaf the median length error of its archetypes.
 struct HeldLeaves {
     int archetypes = 0, held = 0, matching = 0, falseBlades = 0;
+    int counted = 0;  // leaves counted in some view (0 for an empty library, not scored)
     std::vector<float> lengthError;
     void add(const HeldLeaves& o);
 };

@@ -4,12 +4,11 @@
 // steps chained, so that a leaf seen in several views can be told for one leaf (view_joining.h
 // in modeling). A plant on a turntable turns about an upright axis through its foot: a sweep of
 // turns about the up direction through the plant's lowest readings is scored, the best few are
-// refined by ICP (PCL), and the one that lays most readings on the other view's is kept. A pair
-// whose clouds do not come to lie on each other breaks the chain: the next view starts one of
-// its own (see docs/capture.md#turntable-views).
+// refined by ICP (PCL), and the one that lays most readings on the other view's is kept. A view
+// that lies on none of the few views before it starts a chain of its own (see
+// docs/capture.md#turntable-views).
 #include <glm/mat4x4.hpp>
 #include <glm/vec3.hpp>
-#include <optional>
 #include <string>
 #include <vector>
 
@@ -57,12 +56,6 @@ struct RegisteredView {
 // The plant mask's readings of `frame` (the segmentation's cluster mask), with the ground's
 // normal as up when the segmentation found a ground.
 ViewCloud plantCloud(const Segmentation& segmentation, const DepthFrame& frame);
-
-// Registers `view` to `previous`, placed at `previousPlace`: in its chain, or the first of a new
-// one (chain + 1) with why. Throws CaptureError for unusable params.
-RegisteredView registerToPrevious(const ViewCloud& view, const ViewCloud& previous,
-                                  const RegisteredView& previousPlace,
-                                  const ViewRegistrationParams& params = {});
 
 // Views registered one at a time as they come: each to the view before it, or failing that to
 // up to params.fallbackViews views before that (their chain's), or else the first of a new chain

@@ -33,8 +33,9 @@ struct CaptureOptions {
     // 0 = keep every shape.
     float minLengthToWidth = 2.f;
     BladeTrackParams tracks;  // one archetype per blade across groups (enabled = false: per group)
-    // The groups of moving runs (a turning plant) are registered to one another and each leaf's
-    // archetypes joined into its longest (view_joining.h), unless tracks.enabled is false.
+    // With groups.turning (a turntable), the views are registered to one another and a leaf's
+    // archetypes that another view shows longer left out (view_joining.h), unless
+    // tracks.enabled is false.
     capture::ViewRegistrationParams registration;
     ViewJoinParams joining;
     std::filesystem::path debugDir;  // overlay PNG per segmentation when not empty
@@ -52,9 +53,9 @@ struct CaptureSummary {
     int motionTests = 0;           // runs tested for motion (GroupingParams::checkMotion)
     int movingRuns = 0;            // of them, runs in which the tuft moved
     std::string motion;            // the first moving run's measurement, for the CLI
-    // A turning plant's views (moving runs' groups): how many were registered to the view before
-    // them, in how many chains, and how many archetypes were joined into a longer one of their
-    // leaf; with a note per view (its turn, or why its chain broke).
+    // A turning plant's views (GroupingParams::turning): how many were registered to a view
+    // before them, in how many chains, and how many archetypes were left out for a longer one of
+    // their leaf; with a note per view (its turn, or why it starts a chain).
     int turningViews = 0;
     int registeredViews = 0;
     int viewChains = 0;

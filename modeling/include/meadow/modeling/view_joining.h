@@ -5,8 +5,8 @@
 // lie along one another in the chain's space. A leaf's length is taken from the longest of them
 // that another view confirms (shows nearly as long along it): one that runs on past the leaf,
 // into another leaf or down the stem, is seen so once. The shorter ones are left out of the
-// library for it, their views listed in its source (Source::alsoSeenIn), so that a turntable
-// gives each leaf once (see docs/capture.md#turntable-views).
+// library for it, their views listed in its source (Source::alsoSeenIn) (see
+// docs/capture.md#turntable-views).
 #include <vector>
 
 #include "meadow/capture/view_registration.h"
@@ -24,11 +24,6 @@ struct ViewJoinParams {
     // its length, lies along it; only such archetypes are kept for others.
     float confirmingLength = 0.8f;
 };
-
-// An archetype's spine in its chain's space (capture::RegisteredView::chainFromView), base to
-// tip; empty when it is not placed.
-std::vector<glm::vec3> spineInChain(const Archetype& archetype,
-                                    const capture::RegisteredView& view);
 
 // Among the archetypes placed in registered views: those another view's archetype, at least
 // confirmingLength of their length, lies along (or they along it) are confirmed; longest first,
