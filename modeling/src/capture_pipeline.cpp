@@ -61,6 +61,27 @@ int framesToRead(const capture::DepthSource& source, int maxFrames) {
     return total > 0 ? std::min(total, maxFrames) : maxFrames;
 }
 
+// A turning plant's archetypes that no other view shows are pieces of leaves or false blades
+// (ViewJoinResult::seenOnce): left out and noted, or flagged with keepFlagged.
+void leaveOutSeenOnce(const std::vector<std::size_t>& seenOnce, bool keepFlagged,
+                      std::vector<Archetype>& archetypes, CaptureSummary& summary) {
+    const std::string why =
+        std::string(kSeenOnce) + ": no other view of the turning plant shows a leaf along it";
+    for (const std::size_t i : seenOnce) {
+        if (keepFlagged) {
+            archetypes[i].source.flags.push_back(why);
+            continue;
+        }
+        ++summary.skippedBy[kSeenOnce];
+        --summary.bladesModelled;  // a turning plant's archetype is one view's blade
+        summary.notes.push_back(archetypes[i].name + " skipped: " + why);
+    }
+    if (keepFlagged) return;
+    // seenOnce ascends: erased from the back, the indices before stay valid.
+    for (auto i = seenOnce.rbegin(); i != seenOnce.rend(); ++i)
+        archetypes.erase(archetypes.begin() + static_cast<std::ptrdiff_t>(*i));
+}
+
 // Notes each registered view's turn, or why it starts a chain, and joins each leaf's archetypes.
 void joinTurningViews(const CaptureOptions& options, CaptureResult& result) {
     CaptureSummary& summary = result.summary;
@@ -84,8 +105,10 @@ void joinTurningViews(const CaptureOptions& options, CaptureResult& result) {
              << " % of its plant readings on that frame's";
         summary.notes.push_back(note.str());
     }
-    summary.joinedArchetypes =
+    const ViewJoinResult joined =
         joinSameLeafAcrossViews(result.library.archetypes, views, options.joining);
+    summary.joinedArchetypes = joined.leftOut;
+    leaveOutSeenOnce(joined.seenOnce, options.keepFlagged, result.library.archetypes, summary);
 }
 
 }  // namespace

@@ -34,11 +34,13 @@ std::vector<glm::vec3> spineInChain(const Archetype& archetype,
 
 }  // namespace
 
-int joinSameLeafAcrossViews(std::vector<Archetype>& archetypes,
-                            const std::vector<capture::RegisteredView>& views,
-                            const ViewJoinParams& params) {
+ViewJoinResult joinSameLeafAcrossViews(std::vector<Archetype>& archetypes,
+                                       const std::vector<capture::RegisteredView>& views,
+                                       const ViewJoinParams& params) {
     std::map<int, const capture::RegisteredView*> viewOfFrame;
-    for (const capture::RegisteredView& v : views) viewOfFrame[v.frame] = &v;
+    std::map<int, int> viewsInChain;
+    for (const capture::RegisteredView& v : views)
+        viewOfFrame[v.frame] = &v, ++viewsInChain[v.chain];
 
     struct Placed {
         std::size_t index;
@@ -91,9 +93,15 @@ int joinSameLeafAcrossViews(std::vector<Archetype>& archetypes,
         if (confirmed[a] != confirmed[b]) return static_cast<bool>(confirmed[a]);
         return placed[a].length_m > placed[b].length_m;
     });
-    std::vector<bool> folded(archetypes.size(), false);
+    std::vector<bool> folded(archetypes.size(), false), alone(archetypes.size(), false);
+    for (std::size_t i = 0; i < n; ++i)
+        alone[placed[i].index] =
+            viewsInChain.at(placed[i].chain) > 1 &&
+            std::none_of(apart.begin() + static_cast<std::ptrdiff_t>(i * n),
+                         apart.begin() + static_cast<std::ptrdiff_t>((i + 1) * n),
+                         [](float d) { return std::isfinite(d); });
     std::vector<std::size_t> keepers;  // into `placed`
-    int count = 0;
+    ViewJoinResult result;
     for (std::size_t i : order) {
         std::optional<std::size_t> into;
         float nearest = std::numeric_limits<float>::infinity();
@@ -108,16 +116,17 @@ int joinSameLeafAcrossViews(std::vector<Archetype>& archetypes,
         const Source& source = archetypes[placed[i].index].source;
         keeper.alsoSeenIn.push_back({source.frame, source.bladeId});
         folded[placed[i].index] = true;
-        ++count;
+        ++result.leftOut;
     }
     std::size_t next = 0;
     for (std::size_t i = 0; i < archetypes.size(); ++i)
         if (!folded[i]) {
+            if (alone[i]) result.seenOnce.push_back(next);
             if (next != i) archetypes[next] = std::move(archetypes[i]);
             ++next;
         }
     archetypes.resize(next);
-    return count;
+    return result;
 }
 
 }  // namespace meadow::modeling

@@ -55,7 +55,7 @@ TEST(ViewJoining, OneLeafSeenInThreeViewsIsKeptOnceAtTheLengthTwoOfThemShow) {
         leaf("a1", 1, kTurn, kRoot, kLeft, 0.2f),  // the left leaf whole, seen turned
         leaf("a2", 2, kTurn * kTurn, kRoot, kLeft, 0.19f),
     };
-    EXPECT_EQ(joinSameLeafAcrossViews(archetypes, views), 2);
+    EXPECT_EQ(joinSameLeafAcrossViews(archetypes, views).leftOut, 2);
     ASSERT_EQ(archetypes.size(), 2u);
     EXPECT_EQ(archetypes[0].name, "b0");
     EXPECT_EQ(archetypes[1].name, "a1");
@@ -75,10 +75,10 @@ TEST(ViewJoining, ALengthNoOtherViewNearlyShowsIsKeptForNoOther) {
     views.push_back(third);
     std::vector<Archetype> archetypes{leaf("a0", 0, glm::mat4(1.f), kRoot, kLeft, 0.12f),
                                       leaf("f1", 1, kTurn, kRoot, kLeft, 0.3f)};
-    EXPECT_EQ(joinSameLeafAcrossViews(archetypes, views), 0);
+    EXPECT_EQ(joinSameLeafAcrossViews(archetypes, views).leftOut, 0);
     EXPECT_EQ(archetypes.size(), 2u);
     archetypes.push_back(leaf("a2", 2, kTurn * kTurn, kRoot, kLeft, 0.11f));
-    EXPECT_EQ(joinSameLeafAcrossViews(archetypes, views), 1);
+    EXPECT_EQ(joinSameLeafAcrossViews(archetypes, views).leftOut, 1);
     ASSERT_EQ(archetypes.size(), 2u);
     EXPECT_EQ(archetypes[0].name, "a0");
     EXPECT_EQ(archetypes[1].name, "f1");
@@ -89,21 +89,51 @@ TEST(ViewJoining, LeavesOfOneBaseThatPartAreBothKept) {
     const glm::vec3 turned{std::sin(glm::radians(20.f)) - 1.f, -1.f, 0.f};
     std::vector<Archetype> archetypes{leaf("a0", 0, glm::mat4(1.f), kRoot, kLeft, 0.2f),
                                       leaf("c1", 1, kTurn, kRoot, turned, 0.2f)};
-    EXPECT_EQ(joinSameLeafAcrossViews(archetypes, twoViews()), 0);
+    EXPECT_EQ(joinSameLeafAcrossViews(archetypes, twoViews()).leftOut, 0);
     EXPECT_EQ(archetypes.size(), 2u);
 }
 
 TEST(ViewJoining, ViewsOfTwoChainsOrUnregisteredFramesAreNeverJoined) {
     std::vector<Archetype> archetypes{leaf("a0", 0, glm::mat4(1.f), kRoot, kLeft, 0.18f),
                                       leaf("a1", 1, kTurn, kRoot, kLeft, 0.2f)};
-    EXPECT_EQ(joinSameLeafAcrossViews(archetypes, twoViews(1)), 0);
+    const ViewJoinResult apart = joinSameLeafAcrossViews(archetypes, twoViews(1));
+    EXPECT_EQ(apart.leftOut, 0);
     EXPECT_EQ(archetypes.size(), 2u);
+    // Each alone in its chain: no other view could have shown it.
+    EXPECT_TRUE(apart.seenOnce.empty());
     // Frame 2 was not among the registered views.
     archetypes.push_back(leaf("a2", 2, glm::mat4(1.f), kRoot, kLeft, 0.3f));
-    EXPECT_EQ(joinSameLeafAcrossViews(archetypes, twoViews()), 1);
+    EXPECT_EQ(joinSameLeafAcrossViews(archetypes, twoViews()).leftOut, 1);
     ASSERT_EQ(archetypes.size(), 2u);
     EXPECT_EQ(archetypes[0].name, "a1");
     EXPECT_EQ(archetypes[1].name, "a2");
+}
+
+TEST(ViewJoining, AnArchetypeNoOtherViewShowsIsToldApart) {
+    // The left leaf in three views, and in view 0 a blade along nothing another view shows; the
+    // unregistered frame 3's blade is not judged.
+    capture::RegisteredView third;
+    third.frame = 2, third.chainFromView = kTurn * kTurn;
+    std::vector<capture::RegisteredView> views = twoViews();
+    views.push_back(third);
+    std::vector<Archetype> archetypes{
+        leaf("b0", 0, glm::mat4(1.f), kRoot, kRight, 0.15f),
+        leaf("a0", 0, glm::mat4(1.f), kRoot, kLeft, 0.19f),
+        leaf("a1", 1, kTurn, kRoot, kLeft, 0.2f),
+        leaf("a2", 2, kTurn * kTurn, kRoot, kLeft, 0.12f),
+        leaf("d3", 3, glm::mat4(1.f), kRoot, kRight, 0.1f),
+    };
+    const ViewJoinResult joined = joinSameLeafAcrossViews(archetypes, views);
+    EXPECT_EQ(joined.leftOut, 2);
+    ASSERT_EQ(archetypes.size(), 3u);
+    ASSERT_EQ(joined.seenOnce.size(), 1u);
+    EXPECT_EQ(archetypes[joined.seenOnce[0]].name, "b0");
+    // Two leaves that part are each seen once.
+    const glm::vec3 turned{std::sin(glm::radians(20.f)) - 1.f, -1.f, 0.f};
+    archetypes = {leaf("a0", 0, glm::mat4(1.f), kRoot, kLeft, 0.2f),
+                  leaf("c1", 1, kTurn, kRoot, turned, 0.2f)};
+    EXPECT_EQ(joinSameLeafAcrossViews(archetypes, twoViews()).seenOnce,
+              (std::vector<std::size_t>{0, 1}));
 }
 
 }  // namespace

@@ -49,6 +49,8 @@ struct TrackFit {
 // What CaptureSummary::skippedBy and a kept archetype's source flags call a fit too short for its
 // width (CaptureOptions::minLengthToWidth).
 inline constexpr const char* kTooShortForItsWidth = "too-short-for-its-width";
+// What they call an archetype of a turning plant that no other view shows (ViewJoinResult).
+inline constexpr const char* kSeenOnce = "seen-in-one-view-only";
 
 // One archetype per track, fitted to the mean of its skeletons, named by its first view;
 // failures, and fits too short for their width, are noted in `summary`, not thrown.
