@@ -9,13 +9,17 @@
 #include <pcl/kdtree/kdtree_flann.h>
 #include <pcl/point_cloud.h>
 #include <pcl/point_types.h>
+#include <pcl/registration/elch.h>
 #include <pcl/registration/icp.h>
 
 #include <algorithm>
 #include <cmath>
 #include <glm/geometric.hpp>
 #include <glm/gtc/matrix_transform.hpp>
+#include <glm/gtc/quaternion.hpp>
 #include <limits>
+#include <map>
+#include <optional>
 #include <sstream>
 
 #include "meadow/capture/error.h"
@@ -257,6 +261,7 @@ const RegisteredView& ViewRegistrar::add(ViewCloud view) {
     r.frame = view.frame;
     if (placed_.empty()) {
         chains_ = 1;
+        chainStart_ = firstView_ = view;
     } else {
         // The view before first, then the ones before that, nearest first.
         const std::size_t tries = recent_.size();
@@ -270,13 +275,100 @@ const RegisteredView& ViewRegistrar::add(ViewCloud view) {
             }
             if (back == 1) r = std::move(tried);  // its reason is the one the user reads
         }
-        if (!r.why.empty()) r.chain = chains_++;
+        if (!r.why.empty()) r.chain = chains_++, chainStart_ = view;
     }
     placed_.push_back(std::move(r));
     recent_.push_back(std::move(view));
     const auto keep = static_cast<std::size_t>(1 + std::max(0, params_.fallbackViews));
     if (recent_.size() > keep) recent_.erase(recent_.begin());
     return placed_.back();
+}
+
+const LoopClosure& ViewRegistrar::closeLoop() {
+    if (loop_.lastFrame >= 0 || placed_.size() < 3) return loop_;
+    loop_.lastFrame = placed_.back().frame;
+    if (placed_.back().chain != placed_.front().chain)
+        joinLastChainToFirst();
+    else
+        spreadLoopDrift();
+    return loop_;
+}
+
+// The last view registered to `target`, the first view of its chain (`targetPlace`), or why not.
+std::optional<RegisteredView> ViewRegistrar::lastOn(const ViewCloud& target,
+                                                    const RegisteredView& targetPlace) {
+    RegisteredView direct = registerToPrevious(recent_.back(), target, targetPlace, params_);
+    if (direct.why.empty()) return direct;
+    loop_.why = "frame " + std::to_string(loop_.lastFrame) + " not registered to frame " +
+                std::to_string(loop_.firstFrame) + ": " + direct.why;
+    return std::nullopt;
+}
+
+// A turntable's views broken into chains: the last chain ends where the first began, so its last
+// view lies on the first view, and the two chains are one.
+void ViewRegistrar::joinLastChainToFirst() {
+    const RegisteredView& first = placed_.front();
+    loop_.firstFrame = first.frame;
+    const std::optional<RegisteredView> direct = lastOn(firstView_, first);
+    if (!direct) return;
+    const glm::mat4 firstFromLast =
+        direct->chainFromView * glm::inverse(placed_.back().chainFromView);
+    const int last = placed_.back().chain;
+    for (RegisteredView& v : placed_)
+        if (v.chain == last)
+            v.chain = first.chain, v.chainFromView = firstFromLast * v.chainFromView;
+    loop_.joinedChains = true;
+}
+
+// One chain round the plant: its last view registered to its first too, and the difference, the
+// drift gathered along the chain, spread over the chain's views.
+void ViewRegistrar::spreadLoopDrift() {
+    std::size_t first = placed_.size() - 1;
+    while (first > 0 && placed_[first - 1].chain == placed_.back().chain) --first;
+    loop_.firstFrame = placed_[first].frame;
+    std::map<int, std::size_t> indexOf;  // frame -> index into placed_
+    for (std::size_t i = first; i < placed_.size(); ++i) indexOf[placed_[i].frame] = i;
+    for (std::size_t i = placed_.size() - 1; i != first; i = indexOf.at(placed_[i].registeredTo))
+        loop_.chainTurn_deg += placed_[i].turn_deg;
+    // Short of half a turn the last view is no nearer the first one way round than the other.
+    if (std::abs(loop_.chainTurn_deg) < 180.f) {
+        loop_.why = "the chain from frame " + std::to_string(loop_.firstFrame) + " turned " +
+                    std::to_string(static_cast<int>(std::lround(loop_.chainTurn_deg))) +
+                    " deg, not round the plant";
+        return;
+    }
+    const std::optional<RegisteredView> direct = lastOn(chainStart_, placed_[first]);
+    if (!direct) return;
+    // What takes the last view from where the chain put it to where its own registration puts it.
+    const glm::mat4 correction = direct->chainFromView * glm::inverse(placed_.back().chainFromView);
+    double moved = 0.0;
+    for (const glm::vec3& p : recent_.back().points_m) {
+        const glm::vec4 chained = placed_.back().chainFromView * glm::vec4(p, 1.f);
+        moved += glm::distance(glm::vec3(correction * chained), glm::vec3(chained));
+    }
+    loop_.drift_mm = static_cast<float>(kMillimetresPerMetre * moved /
+                                        static_cast<double>(recent_.back().points_m.size()));
+    loop_.drift_deg = glm::degrees(glm::angle(glm::quat_cast(glm::mat3(correction))));
+
+    // ELCH spreads the correction along the graph of the chain's registrations, from none at
+    // its first view to all of it at its last; a view off that path takes its parent's share.
+    using Elch = pcl::registration::ELCH<pcl::PointXYZ>;
+    auto graph = std::make_shared<Elch::LoopGraph>();
+    for (std::size_t i = first; i < placed_.size(); ++i) {
+        const auto v = boost::add_vertex(*graph);
+        (*graph)[v].cloud = std::make_shared<Cloud>();  // ELCH moves it; the places are kept here
+        if (i > first) boost::add_edge(v, indexOf.at(placed_[i].registeredTo) - first, *graph);
+    }
+    Elch elch;
+    elch.setLoopGraph(graph);
+    elch.setLoopStart(0);
+    elch.setLoopEnd(placed_.size() - 1 - first);
+    elch.setLoopTransform(toEigen(correction));
+    elch.compute();
+    for (std::size_t i = first; i < placed_.size(); ++i)
+        placed_[i].chainFromView =
+            toGlm((*graph)[i - first].transform.matrix()) * placed_[i].chainFromView;
+    loop_.closed = true;
 }
 
 std::vector<RegisteredView> registerViews(const std::vector<ViewCloud>& views,

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <optional>
+#include <set>
 #include <sstream>
 #include <string_view>
 
@@ -82,13 +83,29 @@ void leaveOutSeenOnce(const std::vector<std::size_t>& seenOnce, bool keepFlagged
         archetypes.erase(archetypes.begin() + static_cast<std::ptrdiff_t>(*i));
 }
 
+// What became of the turntable's ends, for --verbose ("" when not tried).
+std::string loopNote(const capture::LoopClosure& loop) {
+    if (loop.lastFrame < 0) return {};
+    if (!loop.why.empty()) return "the turntable's ends: " + loop.why;
+    std::ostringstream note;
+    note.precision(1);
+    note << std::fixed << "frame " << loop.lastFrame << " registered to frame " << loop.firstFrame
+         << " too: ";
+    if (loop.joinedChains) note << "its chain joined that frame's";
+    if (loop.closed)
+        note << "the chain's loop closed, " << loop.drift_deg << " deg and " << loop.drift_mm
+             << " mm of drift spread over its views";
+    return note.str();
+}
+
 // Notes each registered view's turn, or why it starts a chain, and joins each leaf's archetypes.
 void joinTurningViews(const CaptureOptions& options, CaptureResult& result) {
     CaptureSummary& summary = result.summary;
     const std::vector<capture::RegisteredView>& views = result.turningViews;
     summary.turningViews = static_cast<int>(views.size());
-    for (const capture::RegisteredView& v : views)
-        summary.viewChains = std::max(summary.viewChains, v.chain + 1);
+    std::set<int> chains;
+    for (const capture::RegisteredView& v : views) chains.insert(v.chain);
+    summary.viewChains = static_cast<int>(chains.size());
     for (std::size_t i = 1; i < views.size(); ++i) {
         const capture::RegisteredView& v = views[i];
         const std::string frame = "frame " + std::to_string(v.frame);
@@ -105,6 +122,9 @@ void joinTurningViews(const CaptureOptions& options, CaptureResult& result) {
              << " % of its plant readings on that frame's";
         summary.notes.push_back(note.str());
     }
+    summary.lastOnFirst = result.turningLoop.joinedChains || result.turningLoop.closed;
+    if (const std::string note = loopNote(result.turningLoop); !note.empty())
+        summary.notes.push_back(note);
     const ViewJoinResult joined =
         joinSameLeafAcrossViews(result.library.archetypes, views, options.joining);
     summary.joinedArchetypes = joined.leftOut;
@@ -171,7 +191,10 @@ CaptureResult captureArchetypes(capture::DepthSource& source, const std::string&
                                       options, sourceName, summary))
         result.library.archetypes.push_back(std::move(fitted.fit.archetype));
 
-    if (registrar) result.turningViews = registrar->views();
+    if (registrar) {
+        result.turningLoop = registrar->closeLoop();
+        result.turningViews = registrar->views();
+    }
     if (result.turningViews.size() >= 2) joinTurningViews(options, result);
 
     if (summary.framesRead == 0) throw ModelingError("capture: " + sourceName + " has no frames");

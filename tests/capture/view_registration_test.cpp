@@ -6,6 +6,7 @@
 #include <cmath>
 #include <glm/geometric.hpp>
 #include <glm/gtc/matrix_transform.hpp>
+#include <glm/gtc/quaternion.hpp>
 
 #include "meadow/capture/error.h"
 
@@ -104,6 +105,74 @@ TEST(ViewRegistration, AViewWithoutPlantReadingsIsNotRegistered) {
     ASSERT_EQ(registered.size(), 2u);
     EXPECT_EQ(registered[1].chain, 1);
     EXPECT_NE(registered[1].why.find("too few plant readings"), std::string::npos);
+}
+
+// How far (degrees) a view's place in its chain is turned from its true one: the view was the
+// plant turned by `angle_deg`, the chain's first view the plant unturned.
+float placeError_deg(const RegisteredView& view, float angle_deg) {
+    const glm::mat4 trueTurn = glm::translate(glm::mat4(1.f), kAxis) *
+                               glm::rotate(glm::mat4(1.f), glm::radians(angle_deg), kUp) *
+                               glm::translate(glm::mat4(1.f), -kAxis);
+    return glm::degrees(glm::angle(glm::quat_cast(glm::mat3(view.chainFromView * trueTurn))));
+}
+
+TEST(ViewRegistration, AChainRoundThePlantSpreadsItsDriftOverItsViews) {
+    // The plant turns 33 deg a view; ICP that pairs only readings 0.1 mm apart (the stem on the
+    // axis) keeps the sweep's 30 deg, so each view drifts 3 deg further from the truth. The
+    // twelfth view (363 deg) lies on the first 3 deg off: closing the loop takes back nearly all
+    // of the 33 deg gathered.
+    ViewRegistrationParams params;
+    params.maxPairing_m = 0.0001f;
+    params.minInlierShare = 0.3f;
+    ViewRegistrar registrar(params);
+    constexpr int kViews = 12;
+    for (int k = 0; k < kViews; ++k) registrar.add(turnedView(k, 33.f * k));
+    const std::vector<RegisteredView> chained = registrar.views();
+    for (const RegisteredView& v : chained) ASSERT_EQ(v.chain, 0) << v.why;
+    EXPECT_GT(placeError_deg(chained.back(), 33.f * (kViews - 1)), 25.f);
+
+    const LoopClosure& loop = registrar.closeLoop();
+    EXPECT_TRUE(loop.closed) << loop.why;
+    EXPECT_FALSE(loop.joinedChains);
+    EXPECT_EQ(loop.firstFrame, 0);
+    EXPECT_EQ(loop.lastFrame, kViews - 1);
+    EXPECT_NEAR(std::abs(loop.chainTurn_deg), 330.f, 1.f);
+    EXPECT_NEAR(loop.drift_deg, 30.f, 1.f);
+    for (int k = 1; k < kViews; ++k)
+        EXPECT_LT(placeError_deg(registrar.views()[static_cast<std::size_t>(k)], 33.f * k), 4.f)
+            << "frame " << k;
+}
+
+TEST(ViewRegistration, AChainShortOfHalfATurnIsNoLoop) {
+    ViewRegistrar registrar;
+    for (int k = 0; k < 4; ++k) registrar.add(turnedView(k, 30.f * k));
+    const LoopClosure& loop = registrar.closeLoop();
+    EXPECT_FALSE(loop.closed);
+    EXPECT_NE(loop.why.find("turned"), std::string::npos) << loop.why;
+    EXPECT_LT(placeError_deg(registrar.views().back(), 90.f), 1.f);
+}
+
+TEST(ViewRegistration, AChainThatEndsWhereTheFirstBeganJoinsIt) {
+    // Views at 0 and 30 deg, then something else, then the plant at -30 deg: with no falling
+    // back it starts a chain of its own, 30 deg from the first view.
+    ViewCloud other;
+    other.frame = 2;
+    for (int y = 0; y < 40; ++y)
+        for (int x = 0; x < 40; ++x) other.points_m.push_back({0.01f * x, 0.01f * y, 1.5f});
+    ViewRegistrationParams params;
+    params.fallbackViews = 0;
+    ViewRegistrar registrar(params);
+    for (const ViewCloud& v :
+         {turnedView(0, 0.f), turnedView(1, 30.f), other, turnedView(3, -30.f)})
+        registrar.add(v);
+    ASSERT_EQ(registrar.views()[3].chain, 2);
+    const LoopClosure& loop = registrar.closeLoop();
+    EXPECT_TRUE(loop.joinedChains) << loop.why;
+    EXPECT_EQ(loop.firstFrame, 0);
+    const std::vector<RegisteredView>& views = registrar.views();
+    EXPECT_EQ(views[3].chain, 0);
+    EXPECT_EQ(views[2].chain, 1);  // the board stays apart
+    EXPECT_LT(placeError_deg(views[3], -30.f), 1.f);
 }
 
 TEST(ViewRegistration, UnusableParametersAreRefused) {

@@ -5,10 +5,12 @@
 // in modeling). A plant on a turntable turns about an upright axis through its foot: a sweep of
 // turns about the up direction through the plant's lowest readings is scored, the best few are
 // refined by ICP (PCL), and the one that lays most readings on the other view's is kept. A view
-// that lies on none of the few views before it starts a chain of its own (see
+// that lies on none of the few views before it starts a chain of its own. At the end the last
+// view is registered to the first as well, where a turntable's ends meet (see
 // docs/capture.md#turntable-views).
 #include <glm/mat4x4.hpp>
 #include <glm/vec3.hpp>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -57,6 +59,22 @@ struct RegisteredView {
 // normal as up when the segmentation found a ground.
 ViewCloud plantCloud(const Segmentation& segmentation, const DepthFrame& frame);
 
+// The turntable's ends brought together after its last view (ViewRegistrar::closeLoop): the last
+// view registered to the first view of the first chain, or of its own chain when that went round
+// the plant.
+struct LoopClosure {
+    int firstFrame = -1, lastFrame = -1;  // -1: not tried (under three views)
+    // The last view lay on the first view of the first chain: its chain joined that one.
+    bool joinedChains = false;
+    // The last view lay on the first view of its own chain, round the plant: the drift gathered
+    // along the chain was spread over its views (ELCH, PCL), taking the last view by drift_deg
+    // and its plant readings by drift_mm (mean).
+    bool closed = false;
+    float chainTurn_deg = 0.f;  // the chain's turns added up, first view to last
+    float drift_deg = 0.f, drift_mm = 0.f;
+    std::string why;  // why neither ("" when one was done)
+};
+
 // Views registered one at a time as they come: each to the view before it, or failing that to
 // up to params.fallbackViews views before that (their chain's), or else the first of a new chain
 // with the reason it did not lie on the view before. Keeps the last few views' clouds only.
@@ -64,12 +82,23 @@ class ViewRegistrar {
 public:
     explicit ViewRegistrar(ViewRegistrationParams params = {});  // throws CaptureError if unusable
     const RegisteredView& add(ViewCloud view);
+    // After the last view (tried once): the last view is registered to the first view. Of
+    // another chain, the last chain then joins the first; of its own chain, when that turned
+    // more than half a turn, the drift is spread along it. views() then holds the new places.
+    const LoopClosure& closeLoop();
     [[nodiscard]] const std::vector<RegisteredView>& views() const { return placed_; }
 
 private:
+    std::optional<RegisteredView> lastOn(const ViewCloud& target,
+                                         const RegisteredView& targetPlace);
+    void joinLastChainToFirst();
+    void spreadLoopDrift();
+
     ViewRegistrationParams params_;
     std::vector<RegisteredView> placed_;
-    std::vector<ViewCloud> recent_;  // the last 1 + fallbackViews views, oldest first
+    std::vector<ViewCloud> recent_;     // the last 1 + fallbackViews views, oldest first
+    ViewCloud firstView_, chainStart_;  // the first chain's first view, the last chain's
+    LoopClosure loop_;
     int chains_ = 0;
 };
 

@@ -59,6 +59,7 @@ struct CaptureSummary {
     int turningViews = 0;
     int registeredViews = 0;
     int viewChains = 0;
+    bool lastOnFirst = false;  // the last view registered to the first too (LoopClosure)
     int joinedArchetypes = 0;
     std::map<std::string, int> skippedBy;    // flag name -> blades it kept from modelling
     std::vector<std::string> notes;          // one line per skipped blade or empty segmentation
@@ -75,6 +76,7 @@ struct CaptureResult {
     CaptureSummary summary;
     // A turning plant's views as registered (view_registration.h); empty without one.
     std::vector<capture::RegisteredView> turningViews;
+    capture::LoopClosure turningLoop;  // its last view on its first (ViewRegistrar::closeLoop)
 };
 
 // Whether a segmenter flag keeps captureArchetypes from modelling the blade (unless
