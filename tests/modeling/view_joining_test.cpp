@@ -40,15 +40,20 @@ std::vector<capture::RegisteredView> twoViews(int secondChain = 0) {
     return {first, second};
 }
 
+// Two views, and a third at the second turn against the first.
+std::vector<capture::RegisteredView> threeViews() {
+    std::vector<capture::RegisteredView> views = twoViews();
+    capture::RegisteredView third;
+    third.frame = 2, third.chainFromView = kTurn * kTurn;
+    views.push_back(third);
+    return views;
+}
+
 const glm::vec3 kRoot{0.f, 0.f, 0.8f};
 const glm::vec3 kLeft{-1.f, -1.f, 0.f}, kRight{1.f, -1.f, 0.2f};
 
 TEST(ViewJoining, OneLeafSeenInThreeViewsIsKeptOnceAtTheLengthTwoOfThemShow) {
-    // A third view's second turn against the first.
-    capture::RegisteredView third;
-    third.frame = 2, third.chainFromView = kTurn * kTurn;
-    std::vector<capture::RegisteredView> views = twoViews();
-    views.push_back(third);
+    const std::vector<capture::RegisteredView> views = threeViews();
     std::vector<Archetype> archetypes{
         leaf("a0", 0, glm::mat4(1.f), kRoot, kLeft, 0.12f),  // the left leaf, cut short
         leaf("b0", 0, glm::mat4(1.f), kRoot, kRight, 0.15f),
@@ -69,10 +74,7 @@ TEST(ViewJoining, ALengthNoOtherViewNearlyShowsIsKeptForNoOther) {
     // View 1's archetype runs 0.3 m along the leaf (as one running on into another leaf would):
     // no other view shows 80 % of that, so view 0's 0.12 m piece is not left out for it. Seen
     // again in view 2 at 0.11 m, the piece is confirmed and view 2's is left out for it.
-    capture::RegisteredView third;
-    third.frame = 2, third.chainFromView = kTurn * kTurn;
-    std::vector<capture::RegisteredView> views = twoViews();
-    views.push_back(third);
+    const std::vector<capture::RegisteredView> views = threeViews();
     std::vector<Archetype> archetypes{leaf("a0", 0, glm::mat4(1.f), kRoot, kLeft, 0.12f),
                                       leaf("f1", 1, kTurn, kRoot, kLeft, 0.3f)};
     EXPECT_EQ(joinSameLeafAcrossViews(archetypes, views).leftOut, 0);
@@ -112,10 +114,7 @@ TEST(ViewJoining, ViewsOfTwoChainsOrUnregisteredFramesAreNeverJoined) {
 TEST(ViewJoining, AnArchetypeNoOtherViewShowsIsToldApart) {
     // The left leaf in three views, and in view 0 a blade along nothing another view shows; the
     // unregistered frame 3's blade is not judged.
-    capture::RegisteredView third;
-    third.frame = 2, third.chainFromView = kTurn * kTurn;
-    std::vector<capture::RegisteredView> views = twoViews();
-    views.push_back(third);
+    const std::vector<capture::RegisteredView> views = threeViews();
     std::vector<Archetype> archetypes{
         leaf("b0", 0, glm::mat4(1.f), kRoot, kRight, 0.15f),
         leaf("a0", 0, glm::mat4(1.f), kRoot, kLeft, 0.19f),
