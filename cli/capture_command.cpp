@@ -213,8 +213,7 @@ Reference: docs/cli.md (options), docs/capture.md (how it works, capturing your 
         ->group(frames);
     cmd->add_flag("--turntable", args->options.groups.turning,
                   "Every frame is a view of a turning plant: each segmented alone, the views "
-                  "registered, a leaf's archetypes another view shows longer left out, and "
-                  "those no other view shows (with --keep-flagged: kept, flagged)")
+                  "registered, each leaf kept once, pieces no other view shows left out")
         ->excludes("--assume-still")
         ->group(frames);
 
