@@ -261,7 +261,7 @@ const RegisteredView& ViewRegistrar::add(ViewCloud view) {
     r.frame = view.frame;
     if (placed_.empty()) {
         chains_ = 1;
-        chainStart_ = firstView_ = view;
+        firstView_ = view;
     } else {
         // The view before first, then the ones before that, nearest first.
         const std::size_t tries = recent_.size();
@@ -275,7 +275,7 @@ const RegisteredView& ViewRegistrar::add(ViewCloud view) {
             }
             if (back == 1) r = std::move(tried);  // its reason is the one the user reads
         }
-        if (!r.why.empty()) r.chain = chains_++, chainStart_ = view;
+        if (!r.why.empty()) r.chain = chains_++;
     }
     placed_.push_back(std::move(r));
     recent_.push_back(std::move(view));
@@ -321,15 +321,19 @@ void ViewRegistrar::joinLastChainToFirst() {
 }
 
 // One chain round the plant: its last view registered to its first too, and the difference, the
-// drift gathered along the chain, spread over the chain's views.
+// drift gathered along the chain, spread over the chain's views. The chain is the first one (a
+// view that fell back past a broken one may have rejoined it after another chain began).
 void ViewRegistrar::spreadLoopDrift() {
-    std::size_t first = placed_.size() - 1;
-    while (first > 0 && placed_[first - 1].chain == placed_.back().chain) --first;
-    loop_.firstFrame = placed_[first].frame;
-    std::map<int, std::size_t> indexOf;  // frame -> index into placed_
-    for (std::size_t i = first; i < placed_.size(); ++i) indexOf[placed_[i].frame] = i;
-    for (std::size_t i = placed_.size() - 1; i != first; i = indexOf.at(placed_[i].registeredTo))
-        loop_.chainTurn_deg += placed_[i].turn_deg;
+    const int chain = placed_.front().chain;
+    loop_.firstFrame = placed_.front().frame;
+    std::map<int, std::size_t> vertexOf;  // frame -> the chain's views in order
+    std::vector<std::size_t> members;     // indices into placed_
+    for (std::size_t i = 0; i < placed_.size(); ++i)
+        if (placed_[i].chain == chain)
+            vertexOf[placed_[i].frame] = members.size(), members.push_back(i);
+    for (std::size_t v = members.size() - 1; v != 0;
+         v = vertexOf.at(placed_[members[v]].registeredTo))
+        loop_.chainTurn_deg += placed_[members[v]].turn_deg;
     // Short of half a turn the last view is no nearer the first one way round than the other.
     if (std::abs(loop_.chainTurn_deg) < 180.f) {
         loop_.why = "the chain from frame " + std::to_string(loop_.firstFrame) + " turned " +
@@ -337,7 +341,7 @@ void ViewRegistrar::spreadLoopDrift() {
                     " deg, not round the plant";
         return;
     }
-    const std::optional<RegisteredView> direct = lastOn(chainStart_, placed_[first]);
+    const std::optional<RegisteredView> direct = lastOn(firstView_, placed_.front());
     if (!direct) return;
     // What takes the last view from where the chain put it to where its own registration puts it.
     const glm::mat4 correction = direct->chainFromView * glm::inverse(placed_.back().chainFromView);
@@ -354,20 +358,20 @@ void ViewRegistrar::spreadLoopDrift() {
     // its first view to all of it at its last; a view off that path takes its parent's share.
     using Elch = pcl::registration::ELCH<pcl::PointXYZ>;
     auto graph = std::make_shared<Elch::LoopGraph>();
-    for (std::size_t i = first; i < placed_.size(); ++i) {
-        const auto v = boost::add_vertex(*graph);
+    for (std::size_t v = 0; v < members.size(); ++v) {
+        boost::add_vertex(*graph);
         (*graph)[v].cloud = std::make_shared<Cloud>();  // ELCH moves it; the places are kept here
-        if (i > first) boost::add_edge(v, indexOf.at(placed_[i].registeredTo) - first, *graph);
+        if (v > 0) boost::add_edge(v, vertexOf.at(placed_[members[v]].registeredTo), *graph);
     }
     Elch elch;
     elch.setLoopGraph(graph);
     elch.setLoopStart(0);
-    elch.setLoopEnd(placed_.size() - 1 - first);
+    elch.setLoopEnd(members.size() - 1);
     elch.setLoopTransform(toEigen(correction));
     elch.compute();
-    for (std::size_t i = first; i < placed_.size(); ++i)
-        placed_[i].chainFromView =
-            toGlm((*graph)[i - first].transform.matrix()) * placed_[i].chainFromView;
+    for (std::size_t v = 0; v < members.size(); ++v)
+        placed_[members[v]].chainFromView =
+            toGlm((*graph)[v].transform.matrix()) * placed_[members[v]].chainFromView;
     loop_.closed = true;
 }
 

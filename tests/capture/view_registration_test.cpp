@@ -143,6 +143,37 @@ TEST(ViewRegistration, AChainRoundThePlantSpreadsItsDriftOverItsViews) {
             << "frame " << k;
 }
 
+TEST(ViewRegistration, ALoopClosesPastAViewOfSomethingElse) {
+    // As above, with a view of something else halfway: it starts a chain of its own, the next
+    // view falls back past it to the first chain, and that chain still closes round the plant.
+    ViewCloud other;
+    other.frame = 6;
+    for (int y = 0; y < 40; ++y)
+        for (int x = 0; x < 40; ++x) other.points_m.push_back({0.01f * x, 0.01f * y, 1.5f});
+    ViewRegistrationParams params;
+    params.maxPairing_m = 0.0001f;
+    params.minInlierShare = 0.3f;
+    ViewRegistrar registrar(params);
+    std::vector<float> angle_deg;  // per frame, of the plant
+    for (int frame = 0, k = 0; frame < 13; ++frame) {
+        if (frame == other.frame) {
+            registrar.add(other);
+            angle_deg.push_back(0.f);
+            continue;
+        }
+        angle_deg.push_back(33.f * k);
+        registrar.add(turnedView(frame, 33.f * k++));
+    }
+    ASSERT_EQ(registrar.views()[6].chain, 1);
+    ASSERT_EQ(registrar.views()[7].chain, 0) << registrar.views()[7].why;
+    const LoopClosure& loop = registrar.closeLoop();
+    EXPECT_TRUE(loop.closed) << loop.why;
+    for (std::size_t frame = 1; frame < 13; ++frame)
+        if (frame != 6)
+            EXPECT_LT(placeError_deg(registrar.views()[frame], angle_deg[frame]), 5.f)
+                << "frame " << frame;
+}
+
 TEST(ViewRegistration, AChainShortOfHalfATurnIsNoLoop) {
     ViewRegistrar registrar;
     for (int k = 0; k < 4; ++k) registrar.add(turnedView(k, 30.f * k));

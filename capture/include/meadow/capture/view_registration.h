@@ -96,8 +96,8 @@ private:
 
     ViewRegistrationParams params_;
     std::vector<RegisteredView> placed_;
-    std::vector<ViewCloud> recent_;     // the last 1 + fallbackViews views, oldest first
-    ViewCloud firstView_, chainStart_;  // the first chain's first view, the last chain's
+    std::vector<ViewCloud> recent_;  // the last 1 + fallbackViews views, oldest first
+    ViewCloud firstView_;            // the first chain's first view
     LoopClosure loop_;
     int chains_ = 0;
 };
