@@ -49,6 +49,15 @@ ViewCloud turnedView(int frame, float angle_deg) {
     return view;
 }
 
+// A view of something else: a flat board 1.5 m away, nothing like the plant.
+ViewCloud board(int frame) {
+    ViewCloud view;
+    view.frame = frame;
+    for (int y = 0; y < 40; ++y)
+        for (int x = 0; x < 40; ++x) view.points_m.push_back({0.01f * x, 0.01f * y, 1.5f});
+    return view;
+}
+
 TEST(ViewRegistration, ATurntablesViewsComeToLieOnTheFirst) {
     std::vector<ViewCloud> views;
     for (int k = 0; k < 4; ++k) views.push_back(turnedView(k, 30.f * k));
@@ -73,10 +82,7 @@ TEST(ViewRegistration, ATurntablesViewsComeToLieOnTheFirst) {
 }
 
 TEST(ViewRegistration, AViewOfSomethingElseStartsAChainAndTheNextFallsBackPastIt) {
-    ViewCloud other;  // a flat board 1.5 m away, nothing like the plant
-    other.frame = 1;
-    for (int y = 0; y < 40; ++y)
-        for (int x = 0; x < 40; ++x) other.points_m.push_back({0.01f * x, 0.01f * y, 1.5f});
+    const ViewCloud other = board(1);
     const std::vector<RegisteredView> registered =
         registerViews({turnedView(0, 0.f), other, turnedView(2, 60.f)});
     ASSERT_EQ(registered.size(), 3u);
@@ -116,15 +122,21 @@ float placeError_deg(const RegisteredView& view, float angle_deg) {
     return glm::degrees(glm::angle(glm::quat_cast(glm::mat3(view.chainFromView * trueTurn))));
 }
 
+// Registration that keeps the sweep's turn: ICP pairs only readings 0.1 mm apart (the stem on
+// the axis, which every turn leaves in place), and a view 3 deg off still counts as lying on.
+ViewRegistrationParams sweepTurnsOnly() {
+    ViewRegistrationParams params;
+    params.maxPairing_m = 0.0001f;
+    params.minInlierShare = 0.3f;
+    return params;
+}
+
 TEST(ViewRegistration, AChainRoundThePlantSpreadsItsDriftOverItsViews) {
     // The plant turns 33 deg a view; ICP that pairs only readings 0.1 mm apart (the stem on the
     // axis) keeps the sweep's 30 deg, so each view drifts 3 deg further from the truth. The
     // twelfth view (363 deg) lies on the first 3 deg off: closing the loop takes back nearly all
     // of the 33 deg gathered.
-    ViewRegistrationParams params;
-    params.maxPairing_m = 0.0001f;
-    params.minInlierShare = 0.3f;
-    ViewRegistrar registrar(params);
+    ViewRegistrar registrar(sweepTurnsOnly());
     constexpr int kViews = 12;
     for (int k = 0; k < kViews; ++k) registrar.add(turnedView(k, 33.f * k));
     const std::vector<RegisteredView> chained = registrar.views();
@@ -146,14 +158,8 @@ TEST(ViewRegistration, AChainRoundThePlantSpreadsItsDriftOverItsViews) {
 TEST(ViewRegistration, ALoopClosesPastAViewOfSomethingElse) {
     // As above, with a view of something else halfway: it starts a chain of its own, the next
     // view falls back past it to the first chain, and that chain still closes round the plant.
-    ViewCloud other;
-    other.frame = 6;
-    for (int y = 0; y < 40; ++y)
-        for (int x = 0; x < 40; ++x) other.points_m.push_back({0.01f * x, 0.01f * y, 1.5f});
-    ViewRegistrationParams params;
-    params.maxPairing_m = 0.0001f;
-    params.minInlierShare = 0.3f;
-    ViewRegistrar registrar(params);
+    const ViewCloud other = board(6);
+    ViewRegistrar registrar(sweepTurnsOnly());
     std::vector<float> angle_deg;  // per frame, of the plant
     for (int frame = 0, k = 0; frame < 13; ++frame) {
         if (frame == other.frame) {
@@ -186,10 +192,7 @@ TEST(ViewRegistration, AChainShortOfHalfATurnIsNoLoop) {
 TEST(ViewRegistration, AChainThatEndsWhereTheFirstBeganJoinsIt) {
     // Views at 0 and 30 deg, then something else, then the plant at -30 deg: with no falling
     // back it starts a chain of its own, 30 deg from the first view.
-    ViewCloud other;
-    other.frame = 2;
-    for (int y = 0; y < 40; ++y)
-        for (int x = 0; x < 40; ++x) other.points_m.push_back({0.01f * x, 0.01f * y, 1.5f});
+    const ViewCloud other = board(2);
     ViewRegistrationParams params;
     params.fallbackViews = 0;
     ViewRegistrar registrar(params);
