@@ -138,8 +138,8 @@ void runCapture(CaptureArgs& args) {
     if (s.turningViews > 1)
         std::cout << "a turning plant: " << s.registeredViews << " of " << s.turningViews - 1
                   << " view(s) registered to the views before"
-                  << (s.lastOnFirst ? " and the last to the first" : "") << " (" << s.viewChains
-                  << " chain(s)), " << s.joinedArchetypes
+                  << (result.turningLoop.met() ? " and the last to the first" : "") << " ("
+                  << s.viewChains << " chain(s)), " << s.joinedArchetypes
                   << " archetype(s) left out for a longer one of the same leaf (--per-group "
                      "keeps every view's)\n";
     if (const auto& stem = result.library.stem) {

@@ -294,11 +294,13 @@ const LoopClosure& ViewRegistrar::closeLoop() {
     return loop_;
 }
 
-// The last view registered to `target`, the first view of its chain (`targetPlace`), or why not.
-std::optional<RegisteredView> ViewRegistrar::lastOn(const ViewCloud& target,
-                                                    const RegisteredView& targetPlace) {
-    RegisteredView direct = registerToPrevious(recent_.back(), target, targetPlace, params_);
-    if (direct.why.empty()) return direct;
+// What moves the last view from where its chain put it to where its own registration to
+// `target`, the first view of a chain (`targetPlace`), puts it; or nothing, with why.
+std::optional<glm::mat4> ViewRegistrar::lastOn(const ViewCloud& target,
+                                               const RegisteredView& targetPlace) {
+    const RegisteredView direct = registerToPrevious(recent_.back(), target, targetPlace, params_);
+    if (direct.why.empty())
+        return direct.chainFromView * glm::inverse(placed_.back().chainFromView);
     loop_.why = "frame " + std::to_string(loop_.lastFrame) + " not registered to frame " +
                 std::to_string(loop_.firstFrame) + ": " + direct.why;
     return std::nullopt;
@@ -309,14 +311,12 @@ std::optional<RegisteredView> ViewRegistrar::lastOn(const ViewCloud& target,
 void ViewRegistrar::joinLastChainToFirst() {
     const RegisteredView& first = placed_.front();
     loop_.firstFrame = first.frame;
-    const std::optional<RegisteredView> direct = lastOn(firstView_, first);
-    if (!direct) return;
-    const glm::mat4 firstFromLast =
-        direct->chainFromView * glm::inverse(placed_.back().chainFromView);
+    const std::optional<glm::mat4> firstFromLast = lastOn(firstView_, first);
+    if (!firstFromLast) return;
     const int last = placed_.back().chain;
     for (RegisteredView& v : placed_)
         if (v.chain == last)
-            v.chain = first.chain, v.chainFromView = firstFromLast * v.chainFromView;
+            v.chain = first.chain, v.chainFromView = *firstFromLast * v.chainFromView;
     loop_.joinedChains = true;
 }
 
@@ -341,10 +341,9 @@ void ViewRegistrar::spreadLoopDrift() {
                     " deg, not round the plant";
         return;
     }
-    const std::optional<RegisteredView> direct = lastOn(firstView_, placed_.front());
-    if (!direct) return;
-    // What takes the last view from where the chain put it to where its own registration puts it.
-    const glm::mat4 correction = direct->chainFromView * glm::inverse(placed_.back().chainFromView);
+    const std::optional<glm::mat4> found = lastOn(firstView_, placed_.front());
+    if (!found) return;
+    const glm::mat4& correction = *found;
     double moved = 0.0;
     for (const glm::vec3& p : recent_.back().points_m) {
         const glm::vec4 chained = placed_.back().chainFromView * glm::vec4(p, 1.f);

@@ -122,7 +122,6 @@ void joinTurningViews(const CaptureOptions& options, CaptureResult& result) {
              << " % of its plant readings on that frame's";
         summary.notes.push_back(note.str());
     }
-    summary.lastOnFirst = result.turningLoop.joinedChains || result.turningLoop.closed;
     if (const std::string note = loopNote(result.turningLoop); !note.empty())
         summary.notes.push_back(note);
     const ViewJoinResult joined =

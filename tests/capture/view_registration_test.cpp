@@ -174,10 +174,11 @@ TEST(ViewRegistration, ALoopClosesPastAViewOfSomethingElse) {
     ASSERT_EQ(registrar.views()[7].chain, 0) << registrar.views()[7].why;
     const LoopClosure& loop = registrar.closeLoop();
     EXPECT_TRUE(loop.closed) << loop.why;
-    for (std::size_t frame = 1; frame < 13; ++frame)
-        if (frame != 6)
-            EXPECT_LT(placeError_deg(registrar.views()[frame], angle_deg[frame]), 5.f)
-                << "frame " << frame;
+    for (std::size_t frame = 1; frame < 13; ++frame) {
+        if (frame == 6) continue;
+        EXPECT_LT(placeError_deg(registrar.views()[frame], angle_deg[frame]), 5.f)
+            << "frame " << frame;
+    }
 }
 
 TEST(ViewRegistration, AChainShortOfHalfATurnIsNoLoop) {

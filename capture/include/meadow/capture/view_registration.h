@@ -73,6 +73,7 @@ struct LoopClosure {
     float chainTurn_deg = 0.f;  // the chain's turns added up, first view to last
     float drift_deg = 0.f, drift_mm = 0.f;
     std::string why;  // why neither ("" when one was done)
+    [[nodiscard]] bool met() const { return joinedChains || closed; }
 };
 
 // Views registered one at a time as they come: each to the view before it, or failing that to
@@ -89,8 +90,7 @@ public:
     [[nodiscard]] const std::vector<RegisteredView>& views() const { return placed_; }
 
 private:
-    std::optional<RegisteredView> lastOn(const ViewCloud& target,
-                                         const RegisteredView& targetPlace);
+    std::optional<glm::mat4> lastOn(const ViewCloud& target, const RegisteredView& targetPlace);
     void joinLastChainToFirst();
     void spreadLoopDrift();
 

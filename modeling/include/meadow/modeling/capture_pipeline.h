@@ -59,7 +59,6 @@ struct CaptureSummary {
     int turningViews = 0;
     int registeredViews = 0;
     int viewChains = 0;
-    bool lastOnFirst = false;  // the last view registered to the first too (LoopClosure)
     int joinedArchetypes = 0;
     std::map<std::string, int> skippedBy;    // flag name -> blades it kept from modelling
     std::vector<std::string> notes;          // one line per skipped blade or empty segmentation
