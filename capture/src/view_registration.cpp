@@ -115,19 +115,24 @@ float lyingOn(const Cloud& source, const glm::mat4& motion,
     return tried ? static_cast<float>(inliers) / static_cast<float>(tried) : 0.f;
 }
 
-// The sweep's turn that lays most of the source on the target, refined by ICP. Each search in
-// PCL's kd-tree costs an OpenMP region in FLANN, so the sweep is scored on a sample and only the
-// best few turns are refined.
-PairFit registerPair(const ViewCloud& source, const ViewCloud& target,
-                     const ViewRegistrationParams& params) {
-    // The source thinned evenly, the target whole: a reading of the source that lies on the
-    // plant then finds one of the target's within the sensor's own spacing.
+// The source thinned evenly to at most params.maxPoints readings; the target is taken whole, so
+// that a reading of the source that lies on the plant finds one of the target's within the
+// sensor's own spacing.
+Cloud::Ptr thinnedSource(const ViewCloud& source, const ViewRegistrationParams& params) {
     const std::size_t thinning = std::max<std::size_t>(
         1, (source.points_m.size() + params.maxPoints - 1) / params.maxPoints);
     std::vector<glm::vec3> thinned;
     for (std::size_t i = 0; i < source.points_m.size(); i += thinning)
         thinned.push_back(source.points_m[i]);
-    const Cloud::Ptr sourceCloud = toCloud(thinned);
+    return toCloud(thinned);
+}
+
+// The sweep's turn that lays most of the source on the target, refined by ICP. Each search in
+// PCL's kd-tree costs an OpenMP region in FLANN, so the sweep is scored on a sample and only the
+// best few turns are refined.
+PairFit registerPair(const ViewCloud& source, const ViewCloud& target,
+                     const ViewRegistrationParams& params) {
+    const Cloud::Ptr sourceCloud = thinnedSource(source, params);
     const Cloud::Ptr targetCloud = toCloud(target.points_m);
     pcl::KdTreeFLANN<pcl::PointXYZ> targetTree;
     targetTree.setInputCloud(targetCloud);
@@ -217,6 +222,16 @@ std::string ViewRegistrationParams::problem() const {
     else if (fallbackViews < 0 || fallbackViews > 8)
         why << "fallbackViews " << fallbackViews << " is not within 0 to 8";
     return why.str();
+}
+
+float shareLyingOn(const ViewCloud& source, const ViewCloud& target,
+                   const glm::mat4& targetFromSource, const ViewRegistrationParams& params) {
+    if (const std::string why = params.problem(); !why.empty())
+        throw CaptureError("view registration: " + why);
+    if (source.points_m.empty() || target.points_m.empty()) return 0.f;
+    pcl::KdTreeFLANN<pcl::PointXYZ> targetTree;
+    targetTree.setInputCloud(toCloud(target.points_m));
+    return lyingOn(*thinnedSource(source, params), targetFromSource, targetTree, params);
 }
 
 ViewCloud plantCloud(const Segmentation& segmentation, const DepthFrame& frame) {

@@ -136,9 +136,10 @@ modeling::ArchetypeLibrary captureEachFrame(const fs::path& recording, int frame
 
 // Capture as `meadow capture --turntable` runs it: each frame alone, the views registered and each
 // leaf's archetypes joined. An empty library when nothing could be modelled.
-modeling::CaptureResult captureTurntable(const fs::path& recording, const Method& method) {
+modeling::CaptureResult captureTurntable(const fs::path& recording, const Method& method,
+                                         const modeling::CaptureOptions& defaults) {
     auto source = capture::openDepthSource(recording.string());
-    modeling::CaptureOptions options;
+    modeling::CaptureOptions options = defaults;
     options.segmenter.plantFinding = method.finding;
     options.segmenter.partition = method.partition;
     options.groups.turning = true;
@@ -373,13 +374,16 @@ int run(int argc, char** argv) {
                 totals[f].add(row);
                 perPlant[f].push_back(row);
                 if (f < findings.size() && findings[f].name() == turntableMethod.name()) {
-                    TurntableRow t = scoreTurntable(library, captureTurntable(o.out, findings[f]),
-                                                    truth, scoring);
+                    const modeling::CaptureOptions defaults;
+                    TurntableRow t =
+                        scoreTurntable(library, captureTurntable(o.out, findings[f], defaults),
+                                       truth, scoring, o.out, defaults.registration);
                     t.sensor = sensor, t.plant = plant;
                     std::cout << sensor << " turntable " << plant << ": " << t.registered << " of "
-                              << t.pairs << " registered, " << t.eachView.archetypes << " -> "
-                              << t.joined.archetypes << " archetypes, held " << t.eachView.held
-                              << " -> " << t.joined.held << " of " << t.leaves << '\n';
+                              << t.pairs << " registered (" << t.registrable << " registrable), "
+                              << t.eachView.archetypes << " -> " << t.joined.archetypes
+                              << " archetypes, held " << t.eachView.held << " -> " << t.joined.held
+                              << " of " << t.leaves << '\n';
                     turntableTotal.add(t);
                     turntableRows.push_back(std::move(t));
                 }

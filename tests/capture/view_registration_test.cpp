@@ -210,6 +210,31 @@ TEST(ViewRegistration, AChainThatEndsWhereTheFirstBeganJoinsIt) {
     EXPECT_LT(placeError_deg(views[3], -30.f), 1.f);
 }
 
+TEST(ViewRegistration, TheTrueTurnSaysWhetherAPairCanBeRegistered) {
+    const ViewCloud before = turnedView(0, 0.f);
+    const ViewCloud after = turnedView(1, 30.f);
+    const glm::mat4 turnBack = glm::translate(glm::mat4(1.f), kAxis) *
+                               glm::rotate(glm::mat4(1.f), glm::radians(-30.f), kUp) *
+                               glm::translate(glm::mat4(1.f), -kAxis);
+    EXPECT_GT(shareLyingOn(after, before, turnBack), 0.99f);
+    EXPECT_LT(shareLyingOn(after, before, glm::mat4(1.f)), 0.5f);  // not turned back
+
+    // A sensor that scatters every other reading 2 cm along its ray: at the true turn only the
+    // rest lie on the view before, too few to register the pair.
+    ViewCloud scattered = after;
+    for (std::size_t i = 0; i < scattered.points_m.size(); i += 2)
+        scattered.points_m[i] *= 1.f + 0.02f / glm::length(scattered.points_m[i]);
+    const float share = shareLyingOn(scattered, before, turnBack);
+    EXPECT_NEAR(share, 0.5f, 0.05f);
+    EXPECT_LT(share, ViewRegistrationParams{}.minInlierShare);
+
+    // The share a registered pair reports is this share at its registered turn.
+    const std::vector<RegisteredView> registered = registerViews({before, after});
+    ASSERT_TRUE(registered[1].why.empty()) << registered[1].why;
+    EXPECT_FLOAT_EQ(shareLyingOn(after, before, registered[1].chainFromView),
+                    registered[1].inlierShare);
+}
+
 TEST(ViewRegistration, UnusableParametersAreRefused) {
     ViewRegistrationParams params;
     params.sweepStep_deg = 0.f;
@@ -221,6 +246,8 @@ TEST(ViewRegistration, UnusableParametersAreRefused) {
     params = {};
     params.fallbackViews = -1;
     EXPECT_THROW(ViewRegistrar{params}, CaptureError);
+    EXPECT_THROW(shareLyingOn(turnedView(0, 0.f), turnedView(1, 0.f), glm::mat4(1.f), params),
+                 CaptureError);
 }
 
 }  // namespace

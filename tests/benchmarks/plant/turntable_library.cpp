@@ -11,6 +11,7 @@
 #include <sstream>
 
 #include "common/report.h"
+#include "meadow/capture/depth_source.h"
 
 namespace meadow::bench {
 namespace {
@@ -52,6 +53,32 @@ std::string cellOf(const HeldLeaves& h) {
            (h.lengthError.empty() ? "-" : fixed(100.0 * median(h.lengthError), 0) + " %");
 }
 
+// The plant's own readings in each view (the truth's leaf and stem labels), by frame.
+std::map<int, capture::ViewCloud> truthPlantClouds(const std::filesystem::path& recording,
+                                                   const synth::ScoringTruth& scoring) {
+    std::map<int, const synth::TruthView*> truthView;
+    for (const synth::TruthView& v : scoring.views) truthView[v.frame] = &v;
+    std::map<int, capture::ViewCloud> clouds;
+    auto source = capture::openDepthSource(recording.string());
+    while (std::optional<capture::DepthFrame> frame = source->next()) {
+        const auto found = truthView.find(frame->index);
+        if (found == truthView.end()) continue;
+        const synth::TruthView& view = *found->second;
+        std::set<int> plant;
+        for (const synth::TruthLeaf& leaf : view.leaves) plant.insert(leaf.id);
+        if (view.stemId != 0) plant.insert(view.stemId);
+        capture::ViewCloud& cloud = clouds[frame->index];
+        cloud.frame = frame->index;
+        for (int y = 0; y < frame->depth_mm.rows; ++y)
+            for (int x = 0; x < frame->depth_mm.cols; ++x)
+                if (frame->depth_mm(y, x) > 0 && plant.contains(view.labels(y, x)))
+                    cloud.points_m.push_back(frame->intrinsics.backProject(
+                        static_cast<float>(x), static_cast<float>(y),
+                        static_cast<float>(frame->depth_mm(y, x)) / 1000.f));
+    }
+    return clouds;
+}
+
 }  // namespace
 
 void HeldLeaves::add(const HeldLeaves& o) {
@@ -61,7 +88,8 @@ void HeldLeaves::add(const HeldLeaves& o) {
 }
 
 void TurntableRow::add(const TurntableRow& o) {
-    pairs += o.pairs, registered += o.registered, leaves += o.leaves;
+    pairs += o.pairs, registered += o.registered, registrable += o.registrable;
+    leaves += o.leaves;
     append(turnError_deg, o.turnError_deg);
     append(offset_mm, o.offset_mm);
     eachView.add(o.eachView);
@@ -70,21 +98,34 @@ void TurntableRow::add(const TurntableRow& o) {
 
 TurntableRow scoreTurntable(const modeling::ArchetypeLibrary& eachView,
                             const modeling::CaptureResult& turntable,
-                            const synth::PlantTruth& truth, const synth::ScoringTruth& scoring) {
+                            const synth::PlantTruth& truth, const synth::ScoringTruth& scoring,
+                            const std::filesystem::path& recording,
+                            const capture::ViewRegistrationParams& registration) {
     TurntableRow row;
     std::map<int, glm::mat4> cameraFromWorld;
     for (const synth::PlantTruthView& v : truth.views) cameraFromWorld[v.index] = v.cameraFromWorld;
     std::map<int, const synth::TruthView*> truthView;
     for (const synth::TruthView& v : scoring.views) truthView[v.frame] = &v;
 
+    // The recording's pairs, each view and the one before, whether capture found the plant in
+    // them or not.
+    const std::map<int, capture::ViewCloud> plantClouds = truthPlantClouds(recording, scoring);
+    for (auto at = plantClouds.begin(), before = at; at != plantClouds.end(); before = at++) {
+        if (at == plantClouds.begin()) continue;
+        ++row.pairs;
+        const glm::mat4 trueMotion =
+            cameraFromWorld.at(before->first) * glm::inverse(cameraFromWorld.at(at->first));
+        if (capture::shareLyingOn(at->second, before->second, trueMotion, registration) >=
+            registration.minInlierShare)
+            ++row.registrable;
+    }
+
     const std::vector<capture::RegisteredView>& views = turntable.turningViews;
     std::map<int, int> chainFirst;  // chain -> its first view's frame
     for (std::size_t i = 0; i < views.size(); ++i) {
         const capture::RegisteredView& v = views[i];
         chainFirst.emplace(v.chain, v.frame);
-        if (i == 0) continue;
-        ++row.pairs;
-        if (!v.why.empty()) continue;
+        if (i == 0 || !v.why.empty()) continue;
         ++row.registered;
         const glm::mat4 trueChainFromView =
             cameraFromWorld.at(chainFirst.at(v.chain)) * glm::inverse(cameraFromWorld.at(v.frame));
@@ -116,20 +157,24 @@ std::string turntableSection(const std::vector<TurntableRow>& rows) {
           "no other view shows; beside it the library of the views captured each alone, as "
           "above. Views registered: of the views after the "
           "first, those whose plant came to lie on the view before it (the rest start a chain of "
-          "their own). Turn error: the angle between the registered and the true turn from the "
+          "their own); registrable: those whose plant's own readings (the truth's leaf and stem "
+          "pixels) lie on the view before's, at the true turn, as registration asks (60 % within "
+          "10 mm): what the sensor's readings allow, whatever capture finds. Turn error: the angle "
+          "between the registered and the true turn from the "
           "chain's first view (median); offset: how far the registration puts the view's true "
           "leaf points from where the truth puts them (median of the views' means). Leaves: "
           "those shown by 300 pixels in some view; held: of them, those an archetype matches; "
           "more: archetypes matching a leaf beyond one per leaf; false: archetypes matching no "
           "leaf; length error: per held leaf the median over its matching archetypes, median "
           "over the leaves. The rows are also in plant_turntable.csv.\n\n"
-          "| Sensor | Plant | Views registered | Turn error (median) | Offset (median) | Leaves "
+          "| Sensor | Plant | Views registered (registrable) | Turn error (median) | Offset "
+          "(median) | Leaves "
           "| Each view: archetypes | held | more | false | length error | Turntable: archetypes | "
           "held | more | false | length error |\n"
           "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
     for (const TurntableRow& r : rows)
         md << "| " << r.sensor << " | " << (r.plant == "all" ? "**all**" : r.plant) << " | "
-           << r.registered << " of " << r.pairs << " | "
+           << r.registered << " of " << r.pairs << " (" << r.registrable << ") | "
            << (r.turnError_deg.empty() ? "-" : fixed(median(r.turnError_deg), 1) + " deg") << " | "
            << (r.offset_mm.empty() ? "-" : fixed(median(r.offset_mm), 0) + " mm") << " | "
            << r.leaves << " | " << cellOf(r.eachView) << " | " << cellOf(r.joined) << " |\n";
@@ -138,14 +183,15 @@ std::string turntableSection(const std::vector<TurntableRow>& rows) {
 
 std::string turntableCsv(const std::vector<TurntableRow>& rows) {
     std::ostringstream csv;
-    csv << "sensor,plant,pairs,registered,turn_error_deg_median,offset_mm_median,leaves";
+    csv << "sensor,plant,pairs,registered,registrable,turn_error_deg_median,offset_mm_median,"
+           "leaves";
     for (const char* library : {"each_view", "turntable"})
         csv << ',' << library << "_archetypes," << library << "_held," << library << "_more,"
             << library << "_false," << library << "_length_error_median";
     csv << '\n';
     for (const TurntableRow& r : rows) {
         csv << r.sensor << ',' << r.plant << ',' << r.pairs << ',' << r.registered << ','
-            << orBlank(r.turnError_deg, median(r.turnError_deg), 2) << ','
+            << r.registrable << ',' << orBlank(r.turnError_deg, median(r.turnError_deg), 2) << ','
             << orBlank(r.offset_mm, median(r.offset_mm), 1) << ',' << r.leaves;
         for (const HeldLeaves* h : {&r.eachView, &r.joined})
             csv << ',' << h->archetypes << ',' << h->held << ',' << h->matching - h->held << ','

@@ -3,6 +3,7 @@
 // another (capture/view_registration.h) against the truth's camera poses, and its library, each
 // leaf's archetypes joined into its longest (modeling/view_joining.h), against the library of the
 // same views captured each alone.
+#include <filesystem>
 #include <string>
 #include <vector>
 
@@ -24,7 +25,11 @@ struct HeldLeaves {
 
 struct TurntableRow {
     std::string sensor, plant;
-    int pairs = 0, registered = 0;  // views after the first, and of them those registered
+    // The recording's views after the first, and of them those capture registered.
+    int pairs = 0, registered = 0;
+    // Of the pairs, those whose plant's own readings (the truth's leaf and stem pixels) lie on
+    // the view before's at the true turn as registration asks: what the sensor allows.
+    int registrable = 0;
     // Per registered view: the angle between the estimated and the true turn from the chain's
     // first view (degrees), and how far the estimate puts the view's true leaf points from where
     // the truth puts them (mean, mm).
@@ -34,9 +39,13 @@ struct TurntableRow {
     void add(const TurntableRow& o);
 };
 
+// `recording`: the turntable's folder (its depth frames); `registration`: what capture
+// registered with, for the registrable pairs.
 TurntableRow scoreTurntable(const modeling::ArchetypeLibrary& eachView,
                             const modeling::CaptureResult& turntable,
-                            const synth::PlantTruth& truth, const synth::ScoringTruth& scoring);
+                            const synth::PlantTruth& truth, const synth::ScoringTruth& scoring,
+                            const std::filesystem::path& recording,
+                            const capture::ViewRegistrationParams& registration);
 
 // The section of plant_benchmark.md: a paragraph and one row per plant and sensor, and all.
 std::string turntableSection(const std::vector<TurntableRow>& rows);

@@ -59,6 +59,13 @@ struct RegisteredView {
 // normal as up when the segmentation found a ground.
 ViewCloud plantCloud(const Segmentation& segmentation, const DepthFrame& frame);
 
+// The share of `source`'s readings (thinned as registration thins them, params.maxPoints) that
+// lie within params.inlierDistance_m of `target`'s once moved by `targetFromSource`: the figure a
+// pair is registered by (params.minInlierShare). With the true motion it says whether a pair can
+// be registered at all: a distant or noisy sensor's views of a thin plant share few readings.
+float shareLyingOn(const ViewCloud& source, const ViewCloud& target,
+                   const glm::mat4& targetFromSource, const ViewRegistrationParams& params = {});
+
 // The turntable's ends brought together after its last view (ViewRegistrar::closeLoop): the last
 // view registered to the first view of the first chain, or of its own chain when that went round
 // the plant.
