@@ -132,9 +132,14 @@ void runCapture(CaptureArgs& args) {
     if (s.movingRuns > 0)
         std::cout << "the tuft moved in " << s.movingRuns << " of " << s.motionTests
                   << " run(s) of frames (" << s.motion
-                  << "): those frames were segmented one by one, without recurring readings, and "
-                     "modelled one "
-                     "archetype per group (--assume-still takes every run for still)\n";
+                  << "): those frames were segmented one by one, without recurring readings, "
+                  << (s.turningRuns == s.movingRuns ? "as views of a turning plant"
+                      : s.turningRuns > 0
+                          ? "the plant's of " + std::to_string(s.turningRuns) +
+                                " run(s) as views of a turning plant, the rest one archetype per "
+                                "group"
+                          : std::string("and modelled one archetype per group"))
+                  << " (--assume-still takes every run for still)\n";
     if (s.turningViews > 1)
         std::cout << "a turning plant: " << s.registeredViews << " of " << s.turningViews - 1
                   << " view(s) registered to the views before"

@@ -48,7 +48,7 @@ std::vector<GroupSegmentation> GroupSegmenter::segmentPending() {
     if (pending_ == 0) return out;
     const std::vector<DepthFrame>& run = recent_;
     // A turning plant's frames are segmented alone, without recurring readings.
-    bool moving = params_.turning;
+    bool moving = params_.turning, turning = params_.turning;
     RecurringReadings tips = moving ? RecurringReadings{} : recurringOfRun(run);
     const auto fusion = static_cast<std::size_t>(params_.fusionFrames);
     const std::size_t firstPending = run.size() - pending_;
@@ -75,9 +75,10 @@ std::vector<GroupSegmentation> GroupSegmenter::segmentPending() {
             motionTests_ += motion.measured;
             if (motion.moved(params_.motion)) {
                 moving = true;
+                turning = motion.turned(params_.motion);
                 ++movingRuns_;
-                g.runMoved =
-                    MovingRun{run.front().index, run.back().index, motion.summary(params_.motion)};
+                g.runMoved = MovingRun{run.front().index, run.back().index,
+                                       motion.summary(params_.motion), turning};
                 // Frames that disagree are never fused, nor their readings taken as recurring:
                 // each frame of the run is segmented alone.
                 tips = {};
@@ -89,6 +90,7 @@ std::vector<GroupSegmentation> GroupSegmenter::segmentPending() {
         }
         g.group = groups_++;
         g.moving = moving;
+        g.turning = turning;
         g.frames.assign(group.begin(), group.end());
         out.push_back(std::move(g));
     }

@@ -56,12 +56,15 @@ void observeGroup(const capture::GroupSegmentation& group, const CaptureOptions&
         summary.stage_ms[stage.stage] += stage.time_ms;
     if (group.moving) observations.movingGroups.insert(group.group);
     if (group.runMoved && summary.motion.empty()) summary.motion = group.runMoved->measurement;
-    if (group.runMoved)
-        summary.notes.push_back(
-            "frames " + std::to_string(group.runMoved->firstFrame) + "-" +
-            std::to_string(group.runMoved->lastFrame) + ": the tuft moved (" +
-            group.runMoved->measurement +
-            "): segmented frame by frame without recurring readings, one archetype per group");
+    if (group.runMoved) {
+        summary.turningRuns += group.runMoved->turning;
+        summary.notes.push_back("frames " + std::to_string(group.runMoved->firstFrame) + "-" +
+                                std::to_string(group.runMoved->lastFrame) + ": the tuft moved (" +
+                                group.runMoved->measurement +
+                                "): segmented frame by frame without recurring readings" +
+                                (group.runMoved->turning ? ", as views of a turning plant"
+                                                         : ", one archetype per group"));
+    }
     if (!options.debugDir.empty())
         capture::writeDebugOverlay(options.debugDir / overlayName(frameIndex), depthFrame, seg);
     summary.emptySegmentations += seg.empty();

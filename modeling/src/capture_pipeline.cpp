@@ -157,15 +157,15 @@ CaptureResult captureArchetypes(capture::DepthSource& source, const std::string&
 
     BladeObservations observations;
     std::vector<float> stemHeights_m;
-    // A turning plant's views are registered as they come, each to the ones before: the work is
-    // spread over the frames' progress, and only the last few views' clouds are kept.
-    const bool joinViews = options.tracks.enabled && options.groups.turning;
+    // A turning plant's views (--turntable, or a run the motion test found turning) are
+    // registered as they come, each to the ones before: the work is spread over the frames'
+    // progress, and only the last few views' clouds are kept.
     std::optional<capture::ViewRegistrar> registrar;
-    if (joinViews) registrar.emplace(options.registration);
+    if (options.tracks.enabled) registrar.emplace(options.registration);
     const auto observe = [&](const std::vector<capture::GroupSegmentation>& segmented) {
         for (const capture::GroupSegmentation& group : segmented) {
             observeGroup(group, options, observations, summary);
-            if (joinViews && group.moving)
+            if (registrar && group.turning)
                 registrar->add(capture::plantCloud(group.segmentation, group.frames.front()));
             if (const auto height = stemHeight_m(group.segmentation, group.frames.front()))
                 stemHeights_m.push_back(*height);
@@ -190,7 +190,7 @@ CaptureResult captureArchetypes(capture::DepthSource& source, const std::string&
                                       options, sourceName, summary))
         result.library.archetypes.push_back(std::move(fitted.fit.archetype));
 
-    if (registrar) {
+    if (registrar && !registrar->views().empty()) {
         result.turningLoop = registrar->closeLoop();
         result.turningViews = registrar->views();
     }

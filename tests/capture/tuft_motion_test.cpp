@@ -59,6 +59,7 @@ TEST(TuftMotion, AStillTuftChangesAsMuchOneFrameApartAsSix) {
     // ...and no more six frames apart, as on the still simulated presets.
     EXPECT_NEAR(m.ratio(), 1.0, 0.25);
     EXPECT_FALSE(m.moved());
+    EXPECT_FALSE(m.turned());
     // 6 first frames of 480 in-band readings each, less the drops.
     EXPECT_GT(m.readings, 6 * 440);
     EXPECT_LT(m.readings, 6 * 490);
@@ -71,6 +72,7 @@ TEST(TuftMotion, ATuftThatSwaysChangesMoreTheFartherApartTheFramesAre) {
     ASSERT_TRUE(m.measured);
     EXPECT_GT(m.ratio(), 2.0);
     EXPECT_TRUE(m.moved());
+    EXPECT_FALSE(m.turned()) << "a sway is not a turning plant";
     EXPECT_NE(m.summary().find("6 apart"), std::string::npos) << m.summary();
 }
 
@@ -83,6 +85,7 @@ TEST(TuftMotion, AViewThatChangesEveryFrameMoved) {
     EXPECT_NEAR(m.ratio(), 1.0, 0.1);
     EXPECT_GT(m.nearChanged, 0.9);
     EXPECT_TRUE(m.moved());
+    EXPECT_TRUE(m.turned());
     EXPECT_LT(m.ratio(), MotionParams{}.movedRatio) << "the ratio alone takes it for still";
 }
 
@@ -145,6 +148,7 @@ TEST(TuftMotion, TooFewFramesOrNoReadingInTheBandIsNotMeasured) {
     const TuftMotion none = tuftMotion(bladeFrames(12, 1), 0.2f, 0.3f);
     EXPECT_FALSE(none.measured);
     EXPECT_FALSE(none.moved());
+    EXPECT_FALSE(none.turned());
     EXPECT_NE(none.summary().find("not measured"), std::string::npos);
 }
 

@@ -89,8 +89,9 @@ TEST(PlantSynthCli, AMadePlantsStemHeightIsInTheLibrary) {
 // folder: the motion test finds that the plant changes every frame, and the frames are segmented
 // one by one, never fused, into one library, whichever way the plant is found (fused, a turning
 // plant's frames keep only its stem and pot, which change least: the test reads the first frame
-// alone). (A small plant whose band the static pot fills, as the made one's, is not told from a
-// still one: docs/capture.md#motion-test.)
+// alone). The plant's own readings change as a turning plant's do, so its views are registered
+// and joined as --turntable's are. (A small plant whose band the static pot fills, as the made
+// one's, is not told from a still one: docs/capture.md#motion-test.)
 TEST(PlantSynthCli, ATurntableRecordingIsCapturedFrameByFrame) {
     const fs::path plant = meadow::test::sharedDataDir() / "real/maize-label3d/v-9-1-l-r.txt";
     if (!fs::exists(plant)) GTEST_SKIP() << "shared data not present: " << plant;
@@ -99,15 +100,24 @@ TEST(PlantSynthCli, ATurntableRecordingIsCapturedFrameByFrame) {
     ASSERT_EQ(runMeadow("synth --plant " + plant.string() + " --turntable 12 --out " + rec.string())
                   .exitCode,
               0);
-    // Told nothing, capture finds the plant turning and segments each frame alone; the
-    // potted-plant library is then one archetype per blade and view.
-    const fs::path perView = dir / "per_view.json", joined = dir / "joined.json";
-    for (const std::string args : {"--keep-flagged --subject tuft", "--subject potted-plant"}) {
+    // Told nothing, capture finds the plant turning and segments each frame alone, as views of
+    // a turning plant; with --per-group the library is one archetype per blade and view.
+    const fs::path perView = dir / "per_view.json", joined = dir / "joined.json",
+                   toldNothing = dir / "told_nothing.json";
+    for (const std::string args :
+         {"--keep-flagged --subject tuft --per-group", "--subject potted-plant --per-group"}) {
         const auto c =
             runMeadow("capture " + rec.string() + " --out " + perView.string() + " " + args);
-        EXPECT_NE(c.output.find("segmented one by one"), std::string::npos) << args << "\n"
-                                                                            << c.output;
+        EXPECT_NE(c.output.find("segmented one by one, without recurring readings, as views of "
+                                "a turning plant"),
+                  std::string::npos)
+            << args << "\n"
+            << c.output;
     }
+    const auto plain = runMeadow("capture " + rec.string() + " --subject potted-plant --out " +
+                                 toldNothing.string());
+    ASSERT_EQ(plain.exitCode, 0) << plain.output;
+    EXPECT_NE(plain.output.find("a turning plant: "), std::string::npos) << plain.output;
     // Told it is a turntable, capture registers the views and leaves out the archetypes of a leaf
     // another view shows longer, and those no other view shows: fewer than frame by frame, the
     // kept ones naming the views they stand for.
@@ -129,6 +139,9 @@ TEST(PlantSynthCli, ATurntableRecordingIsCapturedFrameByFrame) {
     ASSERT_NE(seenOnceAt, std::string::npos) << t.output;
     const std::size_t seenOnce = std::stoul(t.output.substr(seenOnceAt + 23));
     EXPECT_EQ(library.archetypes.size() + standsFor + seenOnce, eachView.archetypes.size());
+    // Found turning, the views were joined as --turntable joins them.
+    EXPECT_EQ(meadow::modeling::loadArchetypeLibrary(toldNothing).archetypes.size(),
+              library.archetypes.size());
 }
 
 TEST(PlantSynthCli, WhatCannotWorkIsOneLineAndExitCodeTwo) {

@@ -36,7 +36,11 @@ double TuftMotion::ratio() const {
 bool TuftMotion::moved(const MotionParams& params) const {
     return measured &&
            ((ratio() >= params.movedRatio && farChanged - nearChanged >= params.minMovedShare) ||
-            plantChanged >= params.changedEveryFrame);
+            turned(params));
+}
+
+bool TuftMotion::turned(const MotionParams& params) const {
+    return measured && plantChanged >= params.changedEveryFrame;
 }
 
 std::string TuftMotion::summary(const MotionParams& params) const {

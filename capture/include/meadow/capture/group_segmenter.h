@@ -41,13 +41,17 @@ struct GroupingParams {
 struct MovingRun {
     int firstFrame = 0, lastFrame = 0;  // frame indices
     std::string measurement;            // TuftMotion::summary
+    bool turning = false;               // its plant turned (TuftMotion::turned), not swayed
 };
 
 struct GroupSegmentation {
     int group = 0;                   // 0, 1, ... in the order segmented
     std::vector<DepthFrame> frames;  // the group's frames; the first is the one a fit reads
     Segmentation segmentation;
-    bool moving = false;                // its run moved: segmented without recurring readings
+    bool moving = false;  // its run moved: segmented without recurring readings
+    // Its frame is a view of a turning plant: GroupingParams::turning, or its run moved as a
+    // turning plant's views do (MovingRun::turning). Such views are registered to one another.
+    bool turning = false;
     std::optional<MovingRun> runMoved;  // on the group whose segmentation found its run moving
 };
 

@@ -47,6 +47,10 @@ struct TuftMotion {
     // farChanged / nearChanged (1 when nothing changed at nearLag either).
     [[nodiscard]] double ratio() const;
     [[nodiscard]] bool moved(const MotionParams& params = {}) const;
+    // The plant's own readings changed from one frame to the next as a turning plant's views do
+    // (MotionParams::changedEveryFrame): a turntable, or a camera carried round the plant,
+    // rather than a sway.
+    [[nodiscard]] bool turned(const MotionParams& params = {}) const;
     // "changed readings 0.9 % one frame apart, 2.1 % six apart (2.3x)"
     [[nodiscard]] std::string summary(const MotionParams& params = {}) const;
 };

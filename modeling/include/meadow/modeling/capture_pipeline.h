@@ -53,9 +53,12 @@ struct CaptureSummary {
     int motionTests = 0;           // runs tested for motion (GroupingParams::checkMotion)
     int movingRuns = 0;            // of them, runs in which the tuft moved
     std::string motion;            // the first moving run's measurement, for the CLI
-    // A turning plant's views (GroupingParams::turning): how many were registered to a view
-    // before them, in how many chains, and how many archetypes were left out for a longer one of
-    // their leaf; with a note per view (its turn, or why it starts a chain).
+    // Of the moving runs, those whose plant turned (capture::TuftMotion::turned): their frames
+    // are registered as a turning plant's views, as --turntable's are.
+    int turningRuns = 0;
+    // A turning plant's views (GroupingParams::turning, or turning runs): how many were registered
+    // to a view before them, in how many chains, and how many archetypes were left out for a longer
+    // one of their leaf; with a note per view (its turn, or why it starts a chain).
     int turningViews = 0;
     int registeredViews = 0;
     int viewChains = 0;
