@@ -135,9 +135,9 @@ void runCapture(CaptureArgs& args) {
                   << "): those frames were segmented one by one, without recurring readings, "
                   << (s.turningRuns == s.movingRuns ? "as views of a turning plant"
                       : s.turningRuns > 0
-                          ? "the plant's of " + std::to_string(s.turningRuns) +
-                                " run(s) as views of a turning plant, the rest one archetype per "
-                                "group"
+                          ? "those of " + std::to_string(s.turningRuns) +
+                                " run(s) as views of a turning plant, the rest modelled one "
+                                "archetype per group"
                           : std::string("and modelled one archetype per group"))
                   << " (--assume-still takes every run for still)\n";
     if (s.turningViews > 1)

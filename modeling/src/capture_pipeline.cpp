@@ -159,14 +159,16 @@ CaptureResult captureArchetypes(capture::DepthSource& source, const std::string&
     std::vector<float> stemHeights_m;
     // A turning plant's views (--turntable, or a run the motion test found turning) are
     // registered as they come, each to the ones before: the work is spread over the frames'
-    // progress, and only the last few views' clouds are kept.
+    // progress, and only the last few views' clouds are kept. The registrar starts with the
+    // first such view (it quiets PCL's console for the whole run).
     std::optional<capture::ViewRegistrar> registrar;
-    if (options.tracks.enabled) registrar.emplace(options.registration);
     const auto observe = [&](const std::vector<capture::GroupSegmentation>& segmented) {
         for (const capture::GroupSegmentation& group : segmented) {
             observeGroup(group, options, observations, summary);
-            if (registrar && group.turning)
+            if (options.tracks.enabled && group.turning) {
+                if (!registrar) registrar.emplace(options.registration);
                 registrar->add(capture::plantCloud(group.segmentation, group.frames.front()));
+            }
             if (const auto height = stemHeight_m(group.segmentation, group.frames.front()))
                 stemHeights_m.push_back(*height);
         }
@@ -190,7 +192,7 @@ CaptureResult captureArchetypes(capture::DepthSource& source, const std::string&
                                       options, sourceName, summary))
         result.library.archetypes.push_back(std::move(fitted.fit.archetype));
 
-    if (registrar && !registrar->views().empty()) {
+    if (registrar) {
         result.turningLoop = registrar->closeLoop();
         result.turningViews = registrar->views();
     }
