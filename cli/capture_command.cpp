@@ -147,6 +147,11 @@ void runCapture(CaptureArgs& args) {
                   << s.viewChains << " chain(s)), " << s.joinedArchetypes
                   << " archetype(s) left out for a longer one of the same leaf (--per-group "
                      "keeps every view's)\n";
+    if (s.turningViews > 1 && 2 * s.registeredViews < s.turningViews - 1)
+        std::cout << "most views lay on no view before them, so each keeps its own leaves, "
+                     "pieces and all: bring the camera closer (a leaf a few pixels wide is lost "
+                     "to its mixed readings) or turn the plant by smaller steps; --verbose says "
+                     "why each view was not registered (docs/capture.md#turntable-views)\n";
     if (const auto& stem = result.library.stem) {
         std::ostringstream height;
         height.precision(2);
