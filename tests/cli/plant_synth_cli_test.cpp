@@ -90,8 +90,8 @@ TEST(PlantSynthCli, AMadePlantsStemHeightIsInTheLibrary) {
 // one by one, never fused, into one library, whichever way the plant is found (fused, a turning
 // plant's frames keep only its stem and pot, which change least: the test reads the first frame
 // alone). The plant's own readings change as a turning plant's do, so its views are registered
-// and joined as --turntable's are. (A small plant whose band the static pot fills, as the made
-// one's, is not told from a still one: docs/capture.md#motion-test.)
+// and joined as --turntable's are. (A small plant, as the made one, changes too little between
+// views to be told from a still one: docs/capture.md#motion-test.)
 TEST(PlantSynthCli, ATurntableRecordingIsCapturedFrameByFrame) {
     const fs::path plant = meadow::test::sharedDataDir() / "real/maize-label3d/v-9-1-l-r.txt";
     if (!fs::exists(plant)) GTEST_SKIP() << "shared data not present: " << plant;
