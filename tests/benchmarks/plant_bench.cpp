@@ -375,9 +375,16 @@ int run(int argc, char** argv) {
                 perPlant[f].push_back(row);
                 if (f < findings.size() && findings[f].name() == turntableMethod.name()) {
                     const modeling::CaptureOptions defaults;
-                    TurntableRow t =
-                        scoreTurntable(library, captureTurntable(o.out, findings[f], defaults),
-                                       truth, scoring, o.out, defaults.registration);
+                    const auto start = std::chrono::steady_clock::now();
+                    const modeling::CaptureResult turntable =
+                        captureTurntable(o.out, findings[f], defaults);
+                    const double total_ms = std::chrono::duration<double, std::milli>(
+                                                std::chrono::steady_clock::now() - start)
+                                                .count();
+                    TurntableRow t = scoreTurntable(library, turntable, truth, scoring, o.out,
+                                                    defaults.registration);
+                    t.eachView_ms = times.capture_ms;
+                    t.turntable_ms.assign(static_cast<std::size_t>(views), total_ms / views);
                     t.sensor = sensor, t.plant = plant;
                     std::cout << sensor << " turntable " << plant << ": " << t.registered << " of "
                               << t.pairs << " registered (" << t.registrable << " registrable), "

@@ -94,6 +94,8 @@ void TurntableRow::add(const TurntableRow& o) {
     append(offset_mm, o.offset_mm);
     eachView.add(o.eachView);
     joined.add(o.joined);
+    append(eachView_ms, o.eachView_ms);
+    append(turntable_ms, o.turntable_ms);
 }
 
 TurntableRow scoreTurntable(const modeling::ArchetypeLibrary& eachView,
@@ -166,18 +168,22 @@ std::string turntableSection(const std::vector<TurntableRow>& rows) {
           "those shown by 300 pixels in some view; held: of them, those an archetype matches; "
           "more: archetypes matching a leaf beyond one per leaf; false: archetypes matching no "
           "leaf; length error: per held leaf the median over its matching archetypes, median "
-          "over the leaves. The rows are also in plant_turntable.csv.\n\n"
+          "over the leaves. Time per view: the capture's total over its views, the views "
+          "captured each alone and then as a turntable (median over the views; one core). The "
+          "rows are also in plant_turntable.csv.\n\n"
           "| Sensor | Plant | Views registered (registrable) | Turn error (median) | Offset "
           "(median) | Leaves "
           "| Each view: archetypes | held | more | false | length error | Turntable: archetypes | "
-          "held | more | false | length error |\n"
-          "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+          "held | more | false | length error | Time per view: each view | turntable |\n"
+          "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
     for (const TurntableRow& r : rows)
         md << "| " << r.sensor << " | " << (r.plant == "all" ? "**all**" : r.plant) << " | "
            << r.registered << " of " << r.pairs << " (" << r.registrable << ") | "
            << (r.turnError_deg.empty() ? "-" : fixed(median(r.turnError_deg), 1) + " deg") << " | "
            << (r.offset_mm.empty() ? "-" : fixed(median(r.offset_mm), 0) + " mm") << " | "
-           << r.leaves << " | " << cellOf(r.eachView) << " | " << cellOf(r.joined) << " |\n";
+           << r.leaves << " | " << cellOf(r.eachView) << " | " << cellOf(r.joined) << " | "
+           << (r.eachView_ms.empty() ? "-" : fixed(median(r.eachView_ms), 0) + " ms") << " | "
+           << (r.turntable_ms.empty() ? "-" : fixed(median(r.turntable_ms), 0) + " ms") << " |\n";
     return md.str();
 }
 
@@ -188,7 +194,7 @@ std::string turntableCsv(const std::vector<TurntableRow>& rows) {
     for (const char* library : {"each_view", "turntable"})
         csv << ',' << library << "_archetypes," << library << "_held," << library << "_more,"
             << library << "_false," << library << "_length_error_median";
-    csv << '\n';
+    csv << ",each_view_ms_median,turntable_ms_median\n";
     for (const TurntableRow& r : rows) {
         csv << r.sensor << ',' << r.plant << ',' << r.pairs << ',' << r.registered << ','
             << r.registrable << ',' << orBlank(r.turnError_deg, median(r.turnError_deg), 2) << ','
@@ -196,7 +202,8 @@ std::string turntableCsv(const std::vector<TurntableRow>& rows) {
         for (const HeldLeaves* h : {&r.eachView, &r.joined})
             csv << ',' << h->archetypes << ',' << h->held << ',' << h->matching - h->held << ','
                 << h->falseBlades << ',' << orBlank(h->lengthError, median(h->lengthError), 3);
-        csv << '\n';
+        csv << ',' << orBlank(r.eachView_ms, median(r.eachView_ms), 1) << ','
+            << orBlank(r.turntable_ms, median(r.turntable_ms), 1) << '\n';
     }
     return csv.str();
 }

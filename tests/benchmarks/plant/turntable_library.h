@@ -36,6 +36,9 @@ struct TurntableRow {
     std::vector<float> turnError_deg, offset_mm;
     int leaves = 0;  // counted in some view
     HeldLeaves eachView, joined;
+    // Per view, the capture's time (ms, its total over its views): the views captured each alone,
+    // and the turntable's (registration and joining besides), taken one after the other.
+    std::vector<double> eachView_ms, turntable_ms;
     void add(const TurntableRow& o);
 };
 
