@@ -4,6 +4,7 @@
 
 #include <filesystem>
 #include <opencv2/imgcodecs.hpp>
+#include <string>
 
 #include "cli_test_util.h"
 #include "meadow/modeling/archetype_library.h"
@@ -17,6 +18,16 @@ using meadow::test::freshTempDir;
 using meadow::test::runMeadow;
 
 namespace {
+
+// A shared maize shoot's scan ("v-9-1"), synthesised on a 12-view turntable through the Kinect v1
+// into `rec`: synth's exit code, or -1 where the shared data is not present.
+int sharedShootOnATurntable(const std::string& shoot, const fs::path& rec) {
+    const fs::path scan =
+        meadow::test::sharedDataDir() / "real/maize-label3d" / (shoot + "-l-r.txt");
+    if (!fs::exists(scan)) return -1;
+    return runMeadow("synth --plant " + scan.string() + " --turntable 12 --out " + rec.string())
+        .exitCode;
+}
 
 TEST(PlantSynthCli, AMadePlantBecomesATurntableRecordingWithItsTruth) {
     const fs::path dir = freshTempDir("plant_synth");
@@ -93,13 +104,11 @@ TEST(PlantSynthCli, AMadePlantsStemHeightIsInTheLibrary) {
 // and joined as --turntable's are. (A small plant, as the made one, changes too little between
 // views to be told from a still one: docs/capture.md#motion-test.)
 TEST(PlantSynthCli, ATurntableRecordingIsCapturedFrameByFrame) {
-    const fs::path plant = meadow::test::sharedDataDir() / "real/maize-label3d/v-9-1-l-r.txt";
-    if (!fs::exists(plant)) GTEST_SKIP() << "shared data not present: " << plant;
     const fs::path dir = freshTempDir("plant_turntable");
     const fs::path rec = dir / "rec";
-    ASSERT_EQ(runMeadow("synth --plant " + plant.string() + " --turntable 12 --out " + rec.string())
-                  .exitCode,
-              0);
+    const int synthesised = sharedShootOnATurntable("v-9-1", rec);
+    if (synthesised < 0) GTEST_SKIP() << "shared data not present: maize-label3d v-9-1";
+    ASSERT_EQ(synthesised, 0);
     // Told nothing, capture finds the plant turning and segments each frame alone, as views of
     // a turning plant; with --per-group the library is one archetype per blade and view.
     const fs::path perView = dir / "per_view.json", joined = dir / "joined.json",
@@ -148,13 +157,11 @@ TEST(PlantSynthCli, ATurntableRecordingIsCapturedFrameByFrame) {
 // A maize seedling at the Kinect v1's near limit: in half its views the plant is too small to be
 // found, and the views around them lie on none before them. The user is told what to change.
 TEST(PlantSynthCli, ATurntableWhoseViewsMostlyDoNotRegisterSaysWhatToChange) {
-    const fs::path plant = meadow::test::sharedDataDir() / "real/maize-label3d/v-3-1-l-r.txt";
-    if (!fs::exists(plant)) GTEST_SKIP() << "shared data not present: " << plant;
     const fs::path dir = freshTempDir("plant_unregistered");
     const fs::path rec = dir / "rec";
-    ASSERT_EQ(runMeadow("synth --plant " + plant.string() + " --turntable 12 --out " + rec.string())
-                  .exitCode,
-              0);
+    const int synthesised = sharedShootOnATurntable("v-3-1", rec);
+    if (synthesised < 0) GTEST_SKIP() << "shared data not present: maize-label3d v-3-1";
+    ASSERT_EQ(synthesised, 0);
     const auto c =
         runMeadow("capture " + rec.string() + " --subject potted-plant --turntable --out " +
                   (dir / "lib.json").string());
