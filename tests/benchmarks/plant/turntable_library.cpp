@@ -6,7 +6,9 @@
 #include <glm/mat3x3.hpp>
 #include <glm/matrix.hpp>
 #include <glm/trigonometric.hpp>
+#include <iterator>
 #include <map>
+#include <opencv2/core.hpp>
 #include <set>
 #include <sstream>
 
@@ -53,7 +55,8 @@ std::string cellOf(const HeldLeaves& h) {
            (h.lengthError.empty() ? "-" : fixed(100.0 * median(h.lengthError), 0) + " %");
 }
 
-// The plant's own readings in each view (the truth's leaf and stem labels), by frame.
+// The plant's own readings in each view (the truth's leaf and stem labels), by frame: the cloud
+// capture registers (capture::plantCloud), with the truth's plant as the mask and no band.
 std::map<int, capture::ViewCloud> truthPlantClouds(const std::filesystem::path& recording,
                                                    const synth::ScoringTruth& scoring) {
     std::map<int, const synth::TruthView*> truthView;
@@ -64,17 +67,14 @@ std::map<int, capture::ViewCloud> truthPlantClouds(const std::filesystem::path& 
         const auto found = truthView.find(frame->index);
         if (found == truthView.end()) continue;
         const synth::TruthView& view = *found->second;
-        std::set<int> plant;
-        for (const synth::TruthLeaf& leaf : view.leaves) plant.insert(leaf.id);
-        if (view.stemId != 0) plant.insert(view.stemId);
-        capture::ViewCloud& cloud = clouds[frame->index];
-        cloud.frame = frame->index;
-        for (int y = 0; y < frame->depth_mm.rows; ++y)
-            for (int x = 0; x < frame->depth_mm.cols; ++x)
-                if (frame->depth_mm(y, x) > 0 && plant.contains(view.labels(y, x)))
-                    cloud.points_m.push_back(frame->intrinsics.backProject(
-                        static_cast<float>(x), static_cast<float>(y),
-                        static_cast<float>(frame->depth_mm(y, x)) / 1000.f));
+        capture::Segmentation plant;
+        plant.clusterMask = cv::Mat1b::zeros(frame->depth_mm.size());
+        const auto add = [&](int label) {
+            cv::bitwise_or(plant.clusterMask, view.labels == label, plant.clusterMask);
+        };
+        for (const synth::TruthLeaf& leaf : view.leaves) add(leaf.id);
+        if (view.stemId != 0) add(view.stemId);
+        clouds[frame->index] = capture::plantCloud(plant, *frame);
     }
     return clouds;
 }
@@ -112,8 +112,9 @@ TurntableRow scoreTurntable(const modeling::ArchetypeLibrary& eachView,
     // The recording's pairs, each view and the one before, whether capture found the plant in
     // them or not.
     const std::map<int, capture::ViewCloud> plantClouds = truthPlantClouds(recording, scoring);
-    for (auto at = plantClouds.begin(), before = at; at != plantClouds.end(); before = at++) {
+    for (auto at = plantClouds.begin(); at != plantClouds.end(); ++at) {
         if (at == plantClouds.begin()) continue;
+        const auto before = std::prev(at);
         ++row.pairs;
         const glm::mat4 trueMotion =
             cameraFromWorld.at(before->first) * glm::inverse(cameraFromWorld.at(at->first));
