@@ -389,6 +389,7 @@ FoundPlant findPlant(const cv::Mat1w& depth_mm, const Intrinsics& k, const Segme
     if (std::vector<cv::Point> outline = largestOutline(pot); !outline.empty())
         plant.leftOut.insert(plant.leftOut.begin(), {std::move(outline), kPotWhy});
     plant.base_px = footOf(c.mask, pot);
+    if (cv::countNonZero(pot) > 0) plant.pot_px = cv::boundingRect(pot);
     double nearest = 0, farthest = 0;
     cv::minMaxLoc(depth_mm, &nearest, &farthest, nullptr, nullptr, c.mask);
     plant.near_m = static_cast<float>(nearest) / kMillimetresPerMetre;

@@ -285,6 +285,7 @@ struct Segmenter::Impl {
             return out;
         }
         out.plantBase_px = plant.base_px;
+        out.plantPot_px = plant.pot_px;
         out.nearDepth_m = out.tuftNearest_m = plant.near_m;
         out.farDepth_m = out.tuftFarthest_m = plant.far_m;
         const bool trails = params.tipTrailMinReach_px > 0.f;
@@ -349,11 +350,12 @@ struct Segmenter::Impl {
             for (const std::size_t c : order) {
                 BladeCluster& cluster = out.clusters[c];
                 const int firstId = static_cast<int>(out.blades.size()) + 1;
-                auto blades = params.partition == PartitionMethod::StemGraph
-                                  ? seg::partitionByStem(cluster, mask, depth_mm, params, firstId,
-                                                         out.plantBase_px, plantStem_px, r)
-                                  : seg::partitionCluster(cluster, mask, depth_mm,
-                                                          out.edgeRaggedness, params, firstId, r);
+                auto blades =
+                    params.partition == PartitionMethod::StemGraph
+                        ? seg::partitionByStem(cluster, mask, depth_mm, params, firstId,
+                                               out.plantBase_px, out.plantPot_px, plantStem_px, r)
+                        : seg::partitionCluster(cluster, mask, depth_mm, out.edgeRaggedness, params,
+                                                firstId, r);
                 if (plantStem_px.empty()) plantStem_px = cluster.stemLine_px;
                 if (params.partition != PartitionMethod::StemGraph)
                     seg::flagCutCrossings(blades, cluster, mask, depth_mm, params);

@@ -70,7 +70,8 @@ struct FoundPlant {
                            // other cluster, no pot
     float near_m = 0.f, far_m = 0.f;
     cv::Point2f base_px;  // where it stands: the top middle of its pot, else its lowest row's
-    std::string whyNot;   // "no plant in view: ..." when not found
+    std::optional<cv::Rect> pot_px;      // the box of the pot it stands in, if it does
+    std::string whyNot;                  // "no plant in view: ..." when not found
     std::vector<LeftOutObject> leftOut;  // the largest objects not taken, and why
 };
 FoundPlant findPlant(const cv::Mat1w& depth_mm, const Intrinsics& intrinsics,
@@ -215,12 +216,15 @@ void flagCutCrossings(std::span<BladeContour> blades, const BladeCluster& cluste
 // base (where it meets the stem) round its tip and back. Sets the cluster's stemLine_px.
 // `plantBase` (when known, from PlantFinding::Clusters): where the plant stands; the stem is
 // sought from the skeleton's pixel nearest that point rather than from the cluster's lowest
-// point, which on a plant of drooping leaves is a leaf's tip. `plantStem_px` (frame coordinates,
+// point, which on a plant of drooping leaves is a leaf's tip; what lies wholly below it is the
+// pot's or the ground's, unless it hangs past `plantPot` (the pot's box, when plant finding took
+// one off). `plantStem_px` (frame coordinates,
 // may be empty): the stem another cluster of the same plant holds; a cluster without a stem of
 // its own (a leaf cut off from the rest) bases its leaves by it.
 std::vector<BladeContour> partitionByStem(BladeCluster& cluster, const cv::Mat1b& mask,
                                           const cv::Mat1w& depth_mm, const SegmenterParams& params,
                                           int firstId, const std::optional<cv::Point2f>& plantBase,
+                                          const std::optional<cv::Rect>& plantPot,
                                           const std::vector<cv::Point>& plantStem_px,
                                           StageReport& report);
 // fork_partition.cpp: the pixels of the fork zone (between each blade's two valleys and the base

@@ -171,11 +171,35 @@ std::vector<cv::Mat1b> sharesOfRegion(const cv::Mat1b& region, const cv::Mat1b& 
     return masks;
 }
 
+// A leaf that leaves the stem low hangs below where it left, before the pot or beside it, long
+// and thin; what plant finding leaves of the pot (its rim, a piece of its side) stays within the
+// pot's sides, or is broad. A path (box coordinates, the box at `origin`) hangs past the pot
+// when it is a leaf's length over width and reaches beyond one side of the pot by more than
+// kPastPotShare of the pot's width.
+constexpr float kPastPotShare = 0.25f;
+bool hangsPastPot(const std::vector<cv::Point>& path, const cv::Mat1f& halfWidth,
+                  const std::optional<cv::Rect>& pot, cv::Point origin) {
+    if (!pot || pot->width <= 0 || path.empty()) return false;
+    std::vector<float> widths;
+    for (const cv::Point& p : path) widths.push_back(halfWidth(p));
+    std::nth_element(widths.begin(),
+                     widths.begin() + static_cast<std::ptrdiff_t>(widths.size() / 2), widths.end());
+    const float width = 2.f * std::max(widths[widths.size() / 2], 0.5f);
+    if (static_cast<float>(path.size()) < kMinLeafElongation * width) return false;
+    const float margin = kPastPotShare * static_cast<float>(pot->width);
+    return std::any_of(path.begin(), path.end(), [&](cv::Point p) {
+        const int x = p.x + origin.x;
+        return static_cast<float>(pot->x - x) > margin ||
+               static_cast<float>(x - (pot->x + pot->width - 1)) > margin;
+    });
+}
+
 }  // namespace
 
 std::vector<BladeContour> partitionByStem(BladeCluster& cluster, const cv::Mat1b& mask,
                                           const cv::Mat1w& depth_mm, const SegmenterParams& params,
                                           int firstId, const std::optional<cv::Point2f>& plantBase,
+                                          const std::optional<cv::Rect>& plantPot,
                                           const std::vector<cv::Point>& plantStem_px,
                                           StageReport& report) {
     const cv::Point2f footInFrame = plantBase.value_or(cluster.basePoint_px);
@@ -218,9 +242,11 @@ std::vector<BladeContour> partitionByStem(BladeCluster& cluster, const cv::Mat1b
         LeafStrand leaf = leafOf(graph, strands.strands[i], foot, baseBy);
         if (static_cast<float>(leaf.path.size()) < params.minLeafBranch_px) continue;
         // Where the plant stands is known (the top of its pot): what lies wholly below it is
-        // the pot's rim or the ground, not a leaf; leaves leave the stem above it.
-        if (plantBase && std::all_of(leaf.path.begin(), leaf.path.end(),
-                                     [&](cv::Point p) { return p.y >= footRow; })) {
+        // the pot's rim or the ground, not a leaf, unless it is a low leaf hanging past the pot.
+        if (plantBase &&
+            std::all_of(leaf.path.begin(), leaf.path.end(),
+                        [&](cv::Point p) { return p.y >= footRow; }) &&
+            !hangsPastPot(leaf.path, sk.halfWidth, plantPot, box.tl())) {
             ++belowFoot;
             continue;
         }

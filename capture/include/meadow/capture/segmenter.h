@@ -354,6 +354,8 @@ struct Segmentation {
     bool noPlant = false;
     // Where the plant stands in the image (PlantFinding::Clusters: the top of its pot).
     std::optional<cv::Point2f> plantBase_px;
+    // PlantFinding::Clusters, where the plant stands in a pot: the pot's box in the image.
+    std::optional<cv::Rect> plantPot_px;
     // PlantFinding::Clusters: the largest objects it did not take for the plant's, and why (the
     // debug overlay outlines them), whether it found a plant or not.
     std::vector<LeftOutObject> leftOut;
