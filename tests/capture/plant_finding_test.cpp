@@ -133,6 +133,22 @@ TEST(PlantFindingScenes, APlantOnlyTooSmallAloneIsToldToComeCloser) {
         << "said once: " << seg.noBladesReason;
 }
 
+// A young plant as small standing in a pot as tall as wide: a seedling seen edge-on covers few
+// pixels, but what is thin and grows out of a pot of its own is the plant, down to half a
+// plant's pixels (about 1400 of 2457 here).
+TEST(PlantFindingScenes, AYoungPlantTooSmallAloneIsThePlantInItsPot) {
+    const Strip young{-0.0125f, 0.0125f, 0.03f, 0.2f, 1.f}, pot{-0.05f, 0.05f, 0.2f, 0.3f, 1.f};
+    const Segmentation seg = findIn(
+        castScene(Intrinsics::kinectV1(), {kFloor, kWallAhead}, std::vector<Strip>{young, pot}));
+    ASSERT_FALSE(seg.noPlant) << seg.noBladesReason;
+    expectInThePlant(seg, Intrinsics::kinectV1(), young);
+    // A seventh of a plant's pixels is too small, pot or not.
+    const Strip stub{-0.005f, 0.005f, 0.1f, 0.2f, 1.f};
+    const Segmentation stubSeg = findIn(
+        castScene(Intrinsics::kinectV1(), {kFloor, kWallAhead}, std::vector<Strip>{stub, pot}));
+    EXPECT_TRUE(stubSeg.noPlant);
+}
+
 // Beyond the distances the guide tests, a broad-leaved plant's leaves blur into one another
 // (docs/capture.md): parts wider than a grass's and too short for a broad-leaved plant's. Seen
 // so far off, the reason says to come closer if it is one; the same board within the guide's

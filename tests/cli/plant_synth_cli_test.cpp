@@ -24,13 +24,15 @@ using meadow::test::runMeadow;
 
 namespace {
 
-// A shared maize shoot's scan ("v-9-1"), synthesised on a 12-view turntable through the Kinect v1
+// A shared maize shoot's scan ("v-9-1"), synthesised on a 12-view turntable through `sensor`
 // into `rec`: synth's exit code, or -1 where the shared data is not present.
-int sharedShootOnATurntable(const std::string& shoot, const fs::path& rec) {
+int sharedShootOnATurntable(const std::string& shoot, const fs::path& rec,
+                            const std::string& sensor = "kinect-v1") {
     const fs::path scan =
         meadow::test::sharedDataDir() / "real/maize-label3d" / (shoot + "-l-r.txt");
     if (!fs::exists(scan)) return -1;
-    return runMeadow("synth --plant " + scan.string() + " --turntable 12 --out " + rec.string())
+    return runMeadow("synth --plant " + scan.string() + " --sensor " + sensor +
+                     " --turntable 12 --out " + rec.string())
         .exitCode;
 }
 
@@ -159,13 +161,14 @@ TEST(PlantSynthCli, ATurntableRecordingIsCapturedFrameByFrame) {
               library.archetypes.size());
 }
 
-// A maize seedling at the Kinect v1's near limit: in half its views the plant is too small to be
-// found, and the views around them lie on none before them. The user is told what to change.
+// A young maize shoot through the Kinect v2: its leaves are two or three pixels wide, lost to
+// their mixed readings with the wall behind, and the plant is found in one view of twelve, so
+// no view lies on one before it. The user is told what to change.
 TEST(PlantSynthCli, ATurntableWhoseViewsMostlyDoNotRegisterSaysWhatToChange) {
     const fs::path dir = freshTempDir("plant_unregistered");
     const fs::path rec = dir / "rec";
-    const int synthesised = sharedShootOnATurntable("v-3-1", rec);
-    if (synthesised < 0) GTEST_SKIP() << "shared data not present: maize-label3d v-3-1";
+    const int synthesised = sharedShootOnATurntable("v-6-2", rec, "kinect-v2");
+    if (synthesised < 0) GTEST_SKIP() << "shared data not present: maize-label3d v-6-2";
     ASSERT_EQ(synthesised, 0);
     const auto c =
         runMeadow("capture " + rec.string() + " --subject potted-plant --turntable --out " +
@@ -174,7 +177,7 @@ TEST(PlantSynthCli, ATurntableWhoseViewsMostlyDoNotRegisterSaysWhatToChange) {
     const std::size_t at = c.output.find("a turning plant: ");
     ASSERT_NE(at, std::string::npos) << c.output;
     const int registered = std::stoi(c.output.substr(at + 17));
-    EXPECT_LT(2 * registered, 11) << c.output;  // 4 of 11 when measured
+    EXPECT_LT(2 * registered, 11) << c.output;  // 0 of 11 when measured
     EXPECT_NE(c.output.find("most views lay on no view before them"), std::string::npos)
         << c.output;
     EXPECT_NE(c.output.find("bring the camera closer"), std::string::npos) << c.output;
@@ -228,6 +231,30 @@ TEST(PlantSynthCli, LowLeavesHangingBesideThePotAreLeaves) {
         if (a.source.frame == truth.views[1].frame) alongLeaves.insert(lyingOn(a));
     for (const int hanging : {4, 5})  // the scan's organs 4 and 5
         EXPECT_TRUE(alongLeaves.count(hanging)) << "leaf " << hanging << " of view 1\n" << c.output;
+}
+
+// A maize seedling (the shared v-3-1, 0.2 m tall) 0.8 m from the RealSense D435: seen edge-on,
+// its leaves in one plane, it covers fewer pixels than plant finding asks of a plant (1382 of
+// 1645 in the view 60 deg round). It stands in a pot of its own, so it is the plant: every one
+// of six views holds blades. (Before, that view said "no plant".)
+TEST(PlantSynthCli, ASeedlingSeenEdgeOnInItsPotIsFound) {
+    const fs::path dir = freshTempDir("plant_seedling");
+    const fs::path scan = meadow::test::sharedDataDir() / "real/maize-label3d/v-3-1-l-r.txt";
+    if (!fs::exists(scan)) GTEST_SKIP() << "shared data not present: maize-label3d v-3-1";
+    const fs::path rec = dir / "rec", lib = dir / "lib.json";
+    ASSERT_EQ(runMeadow("synth --plant " + scan.string() +
+                        " --sensor realsense-d435 --turntable 6 --out " + rec.string())
+                  .exitCode,
+              0);
+    const auto c = runMeadow("capture " + rec.string() +
+                             " --subject potted-plant --fuse 1 --assume-still --per-group --out " +
+                             lib.string());
+    ASSERT_EQ(c.exitCode, 0) << c.output;
+    std::set<int> viewsWithBlades;
+    for (const auto& a : meadow::modeling::loadArchetypeLibrary(lib).archetypes)
+        viewsWithBlades.insert(a.source.frame);
+    for (int view = 0; view < 6; ++view)
+        EXPECT_TRUE(viewsWithBlades.count(view)) << "view " << view << "\n" << c.output;
 }
 
 TEST(PlantSynthCli, WhatCannotWorkIsOneLineAndExitCodeTwo) {

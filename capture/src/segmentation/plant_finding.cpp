@@ -43,6 +43,9 @@ constexpr std::size_t kMaxLeftOut = 12;
 constexpr int kLeftOutShareOfPlant = 8;
 // What the plant's own pot is called where it is outlined among the objects left out.
 constexpr const char* kPotWhy = "pot";
+// A seedling in its pot seen edge-on covers few pixels; what stands in a pot of its own, thin, is
+// a plant down to this share of a plant's pixels. The room's odd ends that small stand in none.
+constexpr int kSeedlingShareOfPlant = 2;
 // What a user whose plant is thin but only too small (over half a plant's pixels) should do.
 constexpr const char* kBringCloser = ": bring the camera closer if it is the plant";
 // Beyond the distances the guide tests (docs/capture.md, up to 1.2 m) a broad-leaved plant's
@@ -150,6 +153,43 @@ struct Sorting {
     int unborne = 0;  // thin and large enough, but nothing in view to stand on
 };
 
+// Where the plant stands: the top middle of its pot, or else the middle of its lowest row.
+cv::Point2f footOf(const cv::Mat1b& plant, const cv::Mat1b& pot) {
+    const bool inPot = cv::countNonZero(pot) > 0;
+    const cv::Mat1b& foot = inPot ? pot : plant;
+    const cv::Rect footBox = cv::boundingRect(foot);
+    const int footRow = inPot ? footBox.y : footBox.y + footBox.height - 1;
+    std::vector<cv::Point> row;
+    cv::findNonZero(foot.row(footRow), row);
+    float sum = 0.f;
+    for (const cv::Point& q : row) sum += static_cast<float>(q.x);
+    return {row.empty() ? footBox.x + 0.5f * footBox.width : sum / row.size(),
+            static_cast<float>(footRow)};
+}
+
+// Whether the cluster stands in a pot (`pot` taken off it) on a floor, a table top or the ground.
+bool standsInItsPot(const Cluster& c, const std::vector<ScenePlane>& planes,
+                    const cv::Mat1w& depth_mm, const Intrinsics& k) {
+    return cv::countNonZero(c.pot) > 0 &&
+           aboveBearing_m(c.pot, depth_mm, k, planes) <= kPotStandsWithin_m;
+}
+
+// Whether the cluster grows out of a pot as a plant does: its thick base is shaped like a pot, at
+// least half as tall as wide in the image (a chair's leg lying along the floor is a long flat
+// base), and its thin part rises from the middle of the pot's top: it has readings within the
+// pot's middle half of columns, just above the top.
+constexpr float kPotMinHeightOverWidth = 0.5f;
+bool growsOutOfItsPot(const Cluster& c) {
+    const cv::Rect pot = cv::boundingRect(c.pot);
+    if (static_cast<float>(pot.height) < kPotMinHeightOverWidth * static_cast<float>(pot.width))
+        return false;
+    const cv::Point2f foot = footOf(c.mask, c.pot);
+    const int reach = std::max(3, pot.height / 4);
+    const cv::Rect above(static_cast<int>(foot.x) - pot.width / 4, static_cast<int>(foot.y) - reach,
+                         std::max(1, pot.width / 2), reach);
+    return cv::countNonZero(c.mask(above & cv::Rect({}, c.mask.size()))) > 0;
+}
+
 // Takes each cluster's pot (the thick part it stands in) off it and measures what grows out of
 // it against a plant's leaves.
 Sorting sortOut(std::vector<Cluster>& clusters, const std::vector<ScenePlane>& planes,
@@ -186,7 +226,10 @@ Sorting sortOut(std::vector<Cluster>& clusters, const std::vector<ScenePlane>& p
         } else if (c.nearPlanes > kMaxRemnantShare) {
             why << "lies along the floor or a wall (what their removal left)";
             tag = "floor or wall";
-        } else if (c.height_m < p.plantMinHeight_m || c.area_px < minArea_px) {
+        } else if (c.height_m < p.plantMinHeight_m ||
+                   (c.area_px < minArea_px &&
+                    !(c.area_px >= minArea_px / kSeedlingShareOfPlant &&
+                      standsInItsPot(c, planes, depth_mm, k) && growsOutOfItsPot(c)))) {
             tag = "too small";
             why << "is too small (" << c.area_px << " px; a plant: at least " << minArea_px
                 << " px and " << p.plantMinHeight_m * 100 << " cm tall)";
@@ -284,8 +327,7 @@ std::vector<char> joinThePlantsPieces(std::vector<Cluster>& clusters, std::size_
     // pot, and the piece's own. Each object's is measured once: a room leaves dozens.
     std::vector<char> potStands(clusters.size(), 0);
     for (std::size_t i = 0; i < clusters.size(); ++i)
-        potStands[i] = cv::countNonZero(clusters[i].pot) > 0 &&
-                       aboveBearing_m(clusters[i].pot, depth_mm, k, planes) <= kPotStandsWithin_m;
+        potStands[i] = standsInItsPot(clusters[i], planes, depth_mm, k);
     const auto restorePot = [&](std::size_t i) {
         Cluster& o = clusters[i];
         if (potStands[i]) return;
@@ -330,20 +372,6 @@ std::vector<char> joinThePlantsPieces(std::vector<Cluster>& clusters, std::size_
         if (!joined[i])
             sorting.tag[i] = potStands[i] ? "stands in a pot of its own" : "apart from the plant";
     return joined;
-}
-
-// Where the plant stands: the top middle of its pot, or else the middle of its lowest row.
-cv::Point2f footOf(const cv::Mat1b& plant, const cv::Mat1b& pot) {
-    const bool inPot = cv::countNonZero(pot) > 0;
-    const cv::Mat1b& foot = inPot ? pot : plant;
-    const cv::Rect footBox = cv::boundingRect(foot);
-    const int footRow = inPot ? footBox.y : footBox.y + footBox.height - 1;
-    std::vector<cv::Point> row;
-    cv::findNonZero(foot.row(footRow), row);
-    float sum = 0.f;
-    for (const cv::Point& q : row) sum += static_cast<float>(q.x);
-    return {row.empty() ? footBox.x + 0.5f * footBox.width : sum / row.size(),
-            static_cast<float>(footRow)};
 }
 
 }  // namespace
