@@ -24,16 +24,23 @@ using meadow::test::runMeadow;
 
 namespace {
 
-// A shared maize shoot's scan ("v-9-1"), synthesised on a 12-view turntable through `sensor`
-// into `rec`: synth's exit code, or -1 where the shared data is not present.
+// A shared maize shoot's scan ("v-9-1"), synthesised on a turntable of `views` views through
+// `sensor` into `rec`: synth's exit code, or -1 where the shared data is not present.
 int sharedShootOnATurntable(const std::string& shoot, const fs::path& rec,
-                            const std::string& sensor = "kinect-v1") {
+                            const std::string& sensor = "kinect-v1", int views = 12) {
     const fs::path scan =
         meadow::test::sharedDataDir() / "real/maize-label3d" / (shoot + "-l-r.txt");
     if (!fs::exists(scan)) return -1;
-    return runMeadow("synth --plant " + scan.string() + " --sensor " + sensor +
-                     " --turntable 12 --out " + rec.string())
+    return runMeadow("synth --plant " + scan.string() + " --sensor " + sensor + " --turntable " +
+                     std::to_string(views) + " --out " + rec.string())
         .exitCode;
+}
+
+// Every view of `rec` captured alone as a potted plant into `lib`, one archetype per blade.
+meadow::test::CommandResult captureEachViewAlone(const fs::path& rec, const fs::path& lib) {
+    return runMeadow("capture " + rec.string() +
+                     " --subject potted-plant --fuse 1 --assume-still --per-group --out " +
+                     lib.string());
 }
 
 TEST(PlantSynthCli, AMadePlantBecomesATurntableRecordingWithItsTruth) {
@@ -190,16 +197,11 @@ TEST(PlantSynthCli, ATurntableWhoseViewsMostlyDoNotRegisterSaysWhatToChange) {
 // junction was left out as the pot's, and both were lost to the stem.)
 TEST(PlantSynthCli, LowLeavesHangingBesideThePotAreLeaves) {
     const fs::path dir = freshTempDir("plant_low_leaves");
-    const fs::path scan = meadow::test::sharedDataDir() / "real/maize-label3d/v-9-1-l-r.txt";
-    if (!fs::exists(scan)) GTEST_SKIP() << "shared data not present: maize-label3d v-9-1";
     const fs::path rec = dir / "rec", lib = dir / "lib.json";
-    ASSERT_EQ(runMeadow("synth --plant " + scan.string() +
-                        " --sensor realsense-d435 --turntable 4 --out " + rec.string())
-                  .exitCode,
-              0);
-    const auto c = runMeadow("capture " + rec.string() +
-                             " --subject potted-plant --fuse 1 --assume-still --per-group --out " +
-                             lib.string());
+    const int synthesised = sharedShootOnATurntable("v-9-1", rec, "realsense-d435", 4);
+    if (synthesised < 0) GTEST_SKIP() << "shared data not present: maize-label3d v-9-1";
+    ASSERT_EQ(synthesised, 0);
+    const auto c = captureEachViewAlone(rec, lib);
     ASSERT_EQ(c.exitCode, 0) << c.output;
     const auto truth = meadow::synth::readScoringTruth(rec / "truth/plant.json");
     ASSERT_EQ(truth.views.size(), 4u);
@@ -239,16 +241,11 @@ TEST(PlantSynthCli, LowLeavesHangingBesideThePotAreLeaves) {
 // of six views holds blades. (Before, that view said "no plant".)
 TEST(PlantSynthCli, ASeedlingSeenEdgeOnInItsPotIsFound) {
     const fs::path dir = freshTempDir("plant_seedling");
-    const fs::path scan = meadow::test::sharedDataDir() / "real/maize-label3d/v-3-1-l-r.txt";
-    if (!fs::exists(scan)) GTEST_SKIP() << "shared data not present: maize-label3d v-3-1";
     const fs::path rec = dir / "rec", lib = dir / "lib.json";
-    ASSERT_EQ(runMeadow("synth --plant " + scan.string() +
-                        " --sensor realsense-d435 --turntable 6 --out " + rec.string())
-                  .exitCode,
-              0);
-    const auto c = runMeadow("capture " + rec.string() +
-                             " --subject potted-plant --fuse 1 --assume-still --per-group --out " +
-                             lib.string());
+    const int synthesised = sharedShootOnATurntable("v-3-1", rec, "realsense-d435", 6);
+    if (synthesised < 0) GTEST_SKIP() << "shared data not present: maize-label3d v-3-1";
+    ASSERT_EQ(synthesised, 0);
+    const auto c = captureEachViewAlone(rec, lib);
     ASSERT_EQ(c.exitCode, 0) << c.output;
     std::set<int> viewsWithBlades;
     for (const auto& a : meadow::modeling::loadArchetypeLibrary(lib).archetypes)
