@@ -50,14 +50,6 @@ constexpr float kMinHalfWidth_px = 2.f;
 // a user's depth band kept (such as the benchmark's ground strips beside its blades).
 constexpr float kMaxWidthOverMedian = 3.f;
 
-// The element at size / 2 once sorted (the median of an odd count), reordering `values`.
-template <typename T>
-T middleOf(std::span<T> values) {
-    const auto middle = values.begin() + static_cast<std::ptrdiff_t>(values.size() / 2);
-    std::nth_element(values.begin(), middle, values.end());
-    return *middle;
-}
-
 struct CentreSample {
     cv::Point2f p;
     float halfWidth_px;

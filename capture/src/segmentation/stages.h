@@ -1,6 +1,7 @@
 #pragma once
 // Internal: one function per segmentation stage (one .cpp each). Masks are CV_8U, 255 = kept.
 // Each stage appends what it dropped to the StageReport it is given.
+#include <algorithm>
 #include <opencv2/core/mat.hpp>
 #include <optional>
 #include <span>
@@ -12,6 +13,14 @@
 namespace meadow::capture::segmentation {
 
 inline constexpr float kMillimetresPerMetre = 1000.0f;
+
+// The element at size / 2 once sorted (the median of an odd count), reordering `values`.
+template <typename T>
+T middleOf(std::span<T> values) {
+    const auto middle = values.begin() + static_cast<std::ptrdiff_t>(values.size() / 2);
+    std::nth_element(values.begin(), middle, values.end());
+    return *middle;
+}
 
 // `rect` grown by `by_px` on every side, clipped to `within`: the part of an image a filter of
 // that reach can read or write around `rect`.
@@ -218,9 +227,9 @@ void flagCutCrossings(std::span<BladeContour> blades, const BladeCluster& cluste
 // sought from the skeleton's pixel nearest that point rather than from the cluster's lowest
 // point, which on a plant of drooping leaves is a leaf's tip; what lies wholly below it is the
 // pot's or the ground's, unless it hangs past `plantPot` (the pot's box, when plant finding took
-// one off). `plantStem_px` (frame coordinates,
-// may be empty): the stem another cluster of the same plant holds; a cluster without a stem of
-// its own (a leaf cut off from the rest) bases its leaves by it.
+// one off). `plantStem_px` (frame coordinates, may be empty): the stem another cluster of the
+// same plant holds; a cluster without a stem of its own (a leaf cut off from the rest) bases its
+// leaves by it.
 std::vector<BladeContour> partitionByStem(BladeCluster& cluster, const cv::Mat1b& mask,
                                           const cv::Mat1w& depth_mm, const SegmenterParams& params,
                                           int firstId, const std::optional<cv::Point2f>& plantBase,

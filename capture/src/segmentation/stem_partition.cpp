@@ -182,9 +182,7 @@ bool hangsPastPot(const std::vector<cv::Point>& path, const cv::Mat1f& halfWidth
     if (!pot || pot->width <= 0 || path.empty()) return false;
     std::vector<float> widths;
     for (const cv::Point& p : path) widths.push_back(halfWidth(p));
-    std::nth_element(widths.begin(),
-                     widths.begin() + static_cast<std::ptrdiff_t>(widths.size() / 2), widths.end());
-    const float width = 2.f * std::max(widths[widths.size() / 2], 0.5f);
+    const float width = 2.f * std::max(middleOf(std::span<float>(widths)), 0.5f);
     if (static_cast<float>(path.size()) < kMinLeafElongation * width) return false;
     const float margin = kPastPotShare * static_cast<float>(pot->width);
     return std::any_of(path.begin(), path.end(), [&](cv::Point p) {
