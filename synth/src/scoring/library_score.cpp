@@ -80,15 +80,6 @@ float coverage(const std::vector<glm::vec3>& spine, const TruthLeaf& leaf, const
     return static_cast<float>(within) / static_cast<float>(kSamples);
 }
 
-std::vector<glm::vec3> spineInCamera(const modeling::Archetype& a) {
-    std::vector<glm::vec3> out;
-    for (int k = 0; k < kSamples; ++k) {
-        const float t = a.spine_m.parameterAtLengthFraction(static_cast<float>(k) / (kSamples - 1));
-        out.push_back(glm::vec3(a.source.cameraFromBlade * glm::vec4(a.spine_m.at(t), 1.f)));
-    }
-    return out;
-}
-
 FalseBladeOn classify(std::uint16_t label, const TruthView& view) {
     if (label == 0) return FalseBladeOn::Nothing;
     if (view.stemId != 0 && label == view.stemId) return FalseBladeOn::Stem;
@@ -134,6 +125,15 @@ double median(std::vector<float> v) {
 }
 
 }  // namespace
+
+std::vector<glm::vec3> spineInCamera(const modeling::Archetype& a) {
+    std::vector<glm::vec3> out;
+    for (int k = 0; k < kSamples; ++k) {
+        const float t = a.spine_m.parameterAtLengthFraction(static_cast<float>(k) / (kSamples - 1));
+        out.push_back(glm::vec3(a.source.cameraFromBlade * glm::vec4(a.spine_m.at(t), 1.f)));
+    }
+    return out;
+}
 
 ScoringTruth scoringTruthOf(const PlantTruth& truth, const std::filesystem::path& truthFolder) {
     ScoringTruth out;

@@ -130,6 +130,10 @@ private:
     [[nodiscard]] double medianOver(std::vector<float> ViewScore::*perMatch) const;
 };
 
+// The archetype's spine where it stood, in its view's camera space (metres): points evenly
+// spaced along its length, base to tip, as scoring reads it. Needs a placed source.
+[[nodiscard]] std::vector<glm::vec3> spineInCamera(const modeling::Archetype& a);
+
 // Throws SynthError when an archetype carries no camera placement (a library from an older
 // meadow, or authored).
 [[nodiscard]] LibraryScore scoreLibrary(const modeling::ArchetypeLibrary& library,
